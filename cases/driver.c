@@ -1,0 +1,242 @@
+/* The slump driver: one scene, from options to outputs.
+ *
+ * Order matters for bad input: everything the user gave is read and checked
+ * (scene, mesh, rheology, solver options) before the output directory is
+ * created, so a mistake leaves nothing half-written behind. */
+#include "slumpscene.h"
+#include <time.h>
+
+PetscErrorCode SlumpErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  PetscMPIInt rank = 0;
+  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE) {
+    if (p == PETSC_ERROR_INITIAL) {
+      MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+      if (!rank || comm == PETSC_COMM_SELF) {
+        fprintf(stderr, "slump: error: %s\n", mess ? mess : "unknown error");
+        fflush(stderr);
+      }
+    }
+    return n;
+  }
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+
+typedef struct {
+  SlumpProblem     prob;
+  SlumpScene       scene;
+  SlumpFieldWriter writer;
+  FILE            *series, *steps;
+  MPI_Comm         comm;
+  PetscMPIInt      rank;
+  PetscInt         nout, newton_since, lin_since;
+  SlumpDiagnostics last;
+  PetscBool        quiet;
+} RunCtx;
+
+static PetscErrorCode OpenCSV(RunCtx *r, const char dir[], const char name[], const char header[], FILE **fp)
+{
+  char path[PETSC_MAX_PATH_LEN];
+  PetscFunctionBeginUser;
+  *fp = NULL;
+  if (r->rank) PetscFunctionReturn(0);
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", dir, name));
+  *fp = fopen(path, "w");
+  PetscCheck(*fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
+  fprintf(*fp, "%s\n", header);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode StepMonitor(SlumpIntegrator ti, const SlumpStepRecord *s, void *ctx)
+{
+  RunCtx *r = (RunCtx *)ctx;
+  PetscFunctionBeginUser;
+  r->newton_since += s->newton_its;
+  r->lin_since += s->lin_its;
+  if (r->steps) fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails);
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteDiagnostics(RunCtx *r, PetscReal t, Vec X, PetscReal h, PetscInt order)
+{
+  SlumpDiagnostics d;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemComputeDiagnostics(r->prob, t, X, &d));
+  r->last = d;
+  if (r->series) fprintf(r->series, "%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e\n", (double)t, (double)d.kinetic_energy, (double)d.mean_shear_rate, (double)d.max_shear_rate, (double)d.l2_shear_rate, (double)d.dissipation, (double)d.yielded_fraction, (double)d.flow_rate);
+  if (r->writer) PetscCall(SlumpFieldWriterWrite(r->writer, t, X));
+  if (!r->quiet) PetscCall(PetscPrintf(r->comm, "t %10.4e  h %9.3e  q %d  newton %4d  linear %4d  KE %11.5e  mean|gdot| %11.5e\n", (double)t, (double)h, (int)order, (int)r->newton_since, (int)r->lin_since, (double)d.kinetic_energy, (double)d.mean_shear_rate));
+  r->newton_since = r->lin_since = 0;
+  r->nout++;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode OutputMonitor(SlumpIntegrator ti, PetscReal t, Vec X, void *ctx)
+{
+  RunCtx   *r = (RunCtx *)ctx;
+  PetscReal h;
+  PetscInt  q;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpIntegratorGetLastStep(ti, &h, &q));
+  PetscCall(WriteDiagnostics(r, t, X, h, q));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *mb)
+{
+  PetscLogDouble mem;
+  PetscFunctionBeginUser;
+  PetscCall(PetscMemoryGetMaximumUsage(&mem));
+  if (mem <= 0) PetscCall(PetscMemoryGetCurrentUsage(&mem));
+  *mb = (PetscReal)mem / 1048576.0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mb, 1, MPIU_REAL, MPIU_SUM, comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpRun(MPI_Comm comm)
+{
+  char            scenename[64] = "couette_cessation", dir[PETSC_MAX_PATH_LEN] = "";
+  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE;
+  SlumpProblem    prob;
+  SlumpScene      scene;
+  SlumpIntegrator ti = NULL;
+  SlumpRheology   rheo;
+  SlumpStats      stats;
+  RunCtx          r;
+  DM              dm;
+  Vec             X;
+  PetscLogDouble  t_start, t_end;
+  PetscReal       t_final, t_arrest = -1.0, err[2], nrm[2], rtol = 0, atol = 0, dt = 0, peak;
+  PetscMPIInt     size;
+  PetscInt        N, ncells, cStart, cEnd;
+  SlumpIntegratorType itype = SLUMP_INTEGRATOR_IDA;
+
+  PetscFunctionBeginUser;
+  PetscCall(PetscTime(&t_start));
+  PetscCall(PetscMemorySetGetMaximumUsage());
+  PetscCall(PetscMemzero(&r, sizeof(r)));
+  PetscCallMPI(MPI_Comm_rank(comm, &r.rank));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  r.comm = comm;
+  PetscOptionsBegin(comm, NULL, "slump", "SlumpRun");
+  PetscCall(PetscOptionsString("-scene", "Scene to run ('list' lists them)", "", scenename, scenename, sizeof(scenename), NULL));
+  PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<scene>)", "", dir, dir, sizeof(dir), &set));
+  PetscCall(PetscOptionsBool("-output_fields", "Write fields (XDMF + HDF5) at output times", "", fields, &fields, NULL));
+  PetscCall(PetscOptionsBool("-quiet", "No progress lines", "", quiet, &quiet, NULL));
+  PetscOptionsEnd();
+  r.quiet = quiet;
+  PetscCall(PetscStrcmp(scenename, "list", &list));
+  if (list) {
+    PetscCall(SlumpSceneView(comm));
+    PetscFunctionReturn(0);
+  }
+  if (!dir[0]) PetscCall(PetscSNPrintf(dir, sizeof(dir), "out/%s", scenename));
+
+  /* --- read and check everything --- */
+  PetscCall(SlumpProblemCreate(comm, &prob));
+  PetscCall(SlumpSceneCreate(comm, scenename, prob, &scene));
+  r.prob  = prob;
+  r.scene = scene;
+  PetscCall(SlumpProblemSetFromOptions(prob));
+  PetscCall(SlumpProblemSetUp(prob));
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  if (!scene->steady) {
+    PetscCall(SlumpIntegratorCreate(prob, &ti));
+    PetscCall(SlumpIntegratorSetTimes(ti, 0.0, scene->tfinal, scene->dtout));
+    PetscCall(SlumpIntegratorSetArrestThreshold(ti, scene->arrest_threshold, PETSC_FALSE));
+    PetscCall(SlumpIntegratorSetFromOptions(ti));
+    PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol));
+    PetscCall(SlumpIntegratorGetType(ti, &itype));
+    PetscCall(PetscOptionsGetReal(NULL, NULL, "-time_dt", &dt, NULL));
+    PetscCall(PetscOptionsGetReal(NULL, NULL, "-arrest_mean_shear_rate", &scene->arrest_threshold, NULL));
+  }
+  PetscCall(PetscPrintf(comm, "slump %s: scene %s on %d rank%s\n", SLUMP_VERSION_STRING, scenename, (int)size, size > 1 ? "s" : ""));
+  PetscCall(SlumpProblemView(prob, PETSC_VIEWER_STDOUT_(comm)));
+
+  {
+    PetscBool help;
+    PetscCall(PetscOptionsHasHelp(NULL, &help));
+    if (help) {
+      PetscCall(SlumpIntegratorDestroy(&ti));
+      PetscCall(SlumpSceneDestroy(&scene));
+      PetscCall(SlumpProblemDestroy(&prob));
+      PetscFunctionReturn(0);
+    }
+  }
+
+  /* --- outputs --- */
+  PetscCall(SlumpMakeDirectory(comm, dir));
+  PetscCall(OpenCSV(&r, dir, "series.csv", "t,kinetic_energy,mean_shear_rate,max_shear_rate,l2_shear_rate,dissipation,yielded_fraction,flow_rate", &r.series));
+  if (!scene->steady) PetscCall(OpenCSV(&r, dir, "steps.csv", "t,h,order,newton_its,lin_its,err_test_fails,conv_fails", &r.steps));
+  if (fields) PetscCall(SlumpFieldWriterCreate(prob, dir, &r.writer));
+
+  /* --- run --- */
+  PetscCall(SlumpProblemGetDM(prob, &dm));
+  PetscCall(SlumpProblemCreateVector(prob, &X));
+  PetscCall(PetscObjectSetName((PetscObject)X, "solution"));
+  PetscCall(SlumpProblemProjectInitialState(prob, 0.0, X));
+  PetscCall(PetscMemzero(&stats, sizeof(stats)));
+  if (scene->steady) {
+    PetscCall(SlumpSteadySolve(prob, X, &stats));
+    t_final = 0.0;
+    PetscCall(WriteDiagnostics(&r, 0.0, X, 0.0, 0));
+  } else {
+    PetscCall(SlumpIntegratorSetStepMonitor(ti, StepMonitor, &r));
+    PetscCall(SlumpIntegratorSetOutputMonitor(ti, OutputMonitor, &r));
+    PetscCall(SlumpIntegratorSolve(ti, X));
+    PetscCall(SlumpIntegratorGetStats(ti, &stats));
+    PetscCall(SlumpIntegratorGetTime(ti, &t_final));
+    PetscCall(SlumpIntegratorGetArrestTime(ti, &t_arrest));
+    PetscCall(SlumpProblemComputeDiagnostics(prob, t_final, X, &r.last));
+  }
+  PetscCall(SlumpProblemComputeErrors(prob, t_final, X, err, nrm));
+  if (scene->results) PetscCall(scene->results(scene, prob, t_final, X));
+  PetscCall(PetscTime(&t_end));
+  PetscCall(PeakMemory(comm, &peak));
+  PetscCall(VecGetSize(X, &N));
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  ncells = cEnd - cStart;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm));
+
+  /* --- summary --- */
+  if (!r.rank) {
+    char              path[PETSC_MAX_PATH_LEN];
+    FILE             *fp;
+    SlumpRheologyType rtype;
+    const char       *regname;
+    PetscReal         regval;
+    PetscCall(SlumpRheologyGetType(rheo, &rtype));
+    PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &regval, NULL));
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.csv", dir));
+    fp = fopen(path, "w");
+    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
+    fprintf(fp, "scene,rheology,regularisation,regularisation_value,integrator,rtol,atol,dt,ranks,cells,unknowns");
+    for (PetscInt i = 0; i < scene->nparam; ++i) fprintf(fp, ",%s", scene->pname[i]);
+    fprintf(fp, ",t_final,t_arrest,steps,res_evals,jac_evals,newton_its,lin_its,lin_solves,err_test_fails,conv_fails,h_min,h_max,wall_time,peak_memory_mb,kinetic_energy,mean_shear_rate,max_shear_rate,yielded_fraction,flow_rate,err_u_l2,norm_u_l2,err_p_l2,norm_p_l2");
+    for (PetscInt i = 0; i < scene->nresult; ++i) fprintf(fp, ",%s", scene->rname[i]);
+    fprintf(fp, "\n%s,%s,%s,%.6e,%s,%.3e,%.3e,%.6e,%d,%d,%d", scenename, rtype, regname ? regname : "none", (double)regval, scene->steady ? "steady" : SlumpIntegratorTypes[itype], (double)rtol, (double)atol, (double)dt, (int)size, (int)ncells, (int)N);
+    for (PetscInt i = 0; i < scene->nparam; ++i) fprintf(fp, ",%.10e", (double)scene->pvalue[i]);
+    fprintf(fp, ",%.10e,%.10e,%d,%d,%d,%d,%d,%d,%d,%d,%.6e,%.6e,%.4f,%.1f,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e", (double)t_final, (double)t_arrest, (int)stats.steps, (int)stats.res_evals, (int)stats.jac_evals, (int)stats.newton_its, (int)stats.lin_its, (int)stats.lin_solves, (int)stats.err_test_fails, (int)stats.conv_fails, (double)(stats.steps ? stats.h_min : 0.0), (double)stats.h_max, (double)(t_end - t_start), (double)peak, (double)r.last.kinetic_energy, (double)r.last.mean_shear_rate, (double)r.last.max_shear_rate, (double)r.last.yielded_fraction, (double)r.last.flow_rate, (double)err[0], (double)nrm[0], (double)err[1], (double)nrm[1]);
+    for (PetscInt i = 0; i < scene->nresult; ++i) fprintf(fp, ",%.10e", (double)scene->rvalue[i]);
+    fprintf(fp, "\n");
+    fclose(fp);
+    if (r.series) fclose(r.series);
+    if (r.steps) fclose(r.steps);
+  }
+  PetscCall(PetscPrintf(comm, "summary: scene %s, t %.6g", scenename, (double)t_final));
+  if (!scene->steady) {
+    if (t_arrest >= 0) PetscCall(PetscPrintf(comm, ", arrest (mean shear rate < %g) at t = %.6g", (double)(scene->arrest_threshold), (double)t_arrest));
+    else PetscCall(PetscPrintf(comm, ", no arrest detected"));
+  }
+  PetscCall(PetscPrintf(comm, ", %d steps, %d residual and %d Jacobian evaluations, %d Newton and %d linear iterations, %.3f s, %.0f MB", (int)stats.steps, (int)stats.res_evals, (int)stats.jac_evals, (int)stats.newton_its, (int)stats.lin_its, (double)(t_end - t_start), (double)peak));
+  if (err[0] >= 0) PetscCall(PetscPrintf(comm, ", relative L2 velocity error %.3e", (double)(err[0] / (nrm[0] > 0 ? nrm[0] : 1.0))));
+  for (PetscInt i = 0; i < scene->nresult; ++i) PetscCall(PetscPrintf(comm, ", %s %.6g", scene->rname[i], (double)scene->rvalue[i]));
+  PetscCall(PetscPrintf(comm, "\noutputs in %s/\n", dir));
+
+  PetscCall(VecDestroy(&X));
+  PetscCall(SlumpFieldWriterDestroy(&r.writer));
+  PetscCall(SlumpIntegratorDestroy(&ti));
+  PetscCall(SlumpSceneDestroy(&scene));
+  PetscCall(SlumpProblemDestroy(&prob));
+  PetscFunctionReturn(0);
+}

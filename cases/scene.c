@@ -1,0 +1,126 @@
+/* Scene registry and helpers. */
+#include "slumpscene.h"
+
+typedef struct {
+  char               name[64];
+  char               description[160];
+  SlumpSceneCreateFn create;
+} SceneEntry;
+
+static SceneEntry scenes[32];
+static PetscInt   nscenes = 0;
+
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Decay(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_MMSStokes(SlumpScene, SlumpProblem, MPI_Comm);
+
+PetscErrorCode SlumpSceneRegister(const char name[], const char description[], SlumpSceneCreateFn create)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(nscenes < 32, PETSC_COMM_SELF, PETSC_ERR_SUP, "Too many scenes");
+  PetscCall(PetscStrncpy(scenes[nscenes].name, name, sizeof(scenes[nscenes].name)));
+  PetscCall(PetscStrncpy(scenes[nscenes].description, description, sizeof(scenes[nscenes].description)));
+  scenes[nscenes++].create = create;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneRegisterAll(void)
+{
+  PetscFunctionBeginUser;
+  if (nscenes) PetscFunctionReturn(0);
+  PetscCall(SlumpSceneRegister("couette_cessation", "Bingham plane Couette flow, top plate stopped at t = 0 (the demo): adaptive BDF2 to arrest", SlumpSceneCreate_CouetteCessation));
+  PetscCall(SlumpSceneRegister("poiseuille", "steady Bingham plane Poiseuille flow driven by a pressure gradient; analytic solution", SlumpSceneCreate_Poiseuille));
+  PetscCall(SlumpSceneRegister("decay", "Newtonian flow between plates decaying as sin(pi y) exp(-pi^2 nu t); analytic solution", SlumpSceneCreate_Decay));
+  PetscCall(SlumpSceneRegister("mms_stokes", "manufactured Stokes solution on the unit square (Dirichlet + traction); spatial orders", SlumpSceneCreate_MMSStokes));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneView(MPI_Comm comm)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlumpSceneRegisterAll());
+  for (PetscInt i = 0; i < nscenes; ++i) PetscCall(PetscPrintf(comm, "%-20s %s\n", scenes[i].name, scenes[i].description));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneCreate(MPI_Comm comm, const char name[], SlumpProblem prob, SlumpScene *scene)
+{
+  char known[512] = "";
+  PetscFunctionBeginUser;
+  PetscCall(SlumpSceneRegisterAll());
+  for (PetscInt i = 0; i < nscenes; ++i) {
+    PetscBool same;
+    PetscCall(PetscStrcmp(scenes[i].name, name, &same));
+    if (same) {
+      PetscCall(PetscNew(scene));
+      PetscCall(PetscStrncpy((*scene)->name, name, sizeof((*scene)->name)));
+      (*scene)->tfinal = 1.0;
+      (*scene)->dtout  = 0.1;
+      PetscCall(scenes[i].create(*scene, prob, comm));
+      PetscFunctionReturn(0);
+    }
+  }
+  for (PetscInt i = 0; i < nscenes; ++i) {
+    if (i) PetscCall(PetscStrlcat(known, ", ", sizeof(known)));
+    PetscCall(PetscStrlcat(known, scenes[i].name, sizeof(known)));
+  }
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "Unknown scene '%s' (-scene); accepted: %s (or 'list')", name, known);
+}
+
+PetscErrorCode SlumpSceneDestroy(SlumpScene *scene)
+{
+  PetscFunctionBeginUser;
+  if (*scene) PetscCall(PetscFree((*scene)->ctx));
+  PetscCall(PetscFree(*scene));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneAddParameter(SlumpScene scene, const char name[], PetscReal value)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(scene->nparam < SLUMP_SCENE_MAX_ITEMS, PETSC_COMM_SELF, PETSC_ERR_SUP, "Too many scene parameters");
+  PetscCall(PetscStrncpy(scene->pname[scene->nparam], name, 32));
+  scene->pvalue[scene->nparam++] = value;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneAddResult(SlumpScene scene, const char name[], PetscReal value)
+{
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < scene->nresult; ++i) {
+    PetscBool same;
+    PetscCall(PetscStrcmp(scene->rname[i], name, &same));
+    if (same) {
+      scene->rvalue[i] = value;
+      PetscFunctionReturn(0);
+    }
+  }
+  PetscCheck(scene->nresult < SLUMP_SCENE_MAX_ITEMS, PETSC_COMM_SELF, PETSC_ERR_SUP, "Too many scene results");
+  PetscCall(PetscStrncpy(scene->rname[scene->nresult], name, 32));
+  scene->rvalue[scene->nresult++] = value;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneCreateMesh(SlumpScene scene, MPI_Comm comm, const PetscReal lower[2], const PetscReal upper[2], DM *dm)
+{
+  char      file[PETSC_MAX_PATH_LEN] = "";
+  PetscInt  nx = scene->mesh_n[0], ny = scene->mesh_n[1];
+  PetscBool has_file;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "Mesh", "SlumpScene");
+  PetscCall(PetscOptionsString("-mesh_file", "Gmsh .msh file (physical names become boundary labels)", "", file, file, sizeof(file), &has_file));
+  PetscCall(PetscOptionsInt("-mesh_nx", "Cells along x of the rectangle", "", nx, &nx, NULL));
+  PetscCall(PetscOptionsInt("-mesh_ny", "Cells along y of the rectangle", "", ny, &ny, NULL));
+  PetscOptionsEnd();
+  scene->mesh_n[0] = nx;
+  scene->mesh_n[1] = ny;
+  if (has_file && file[0]) PetscCall(SlumpMeshCreateGmsh(comm, file, dm));
+  else {
+    PetscCheck(!has_file, comm, PETSC_ERR_USER_INPUT, "-mesh_file needs a file name");
+    PetscCall(SlumpMeshCreateRectangle(comm, nx, ny, lower, upper, dm));
+  }
+  PetscCall(DMSetFromOptions(*dm));
+  PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,106 @@
+/* Steady Bingham plane Poiseuille flow (REFERENCES.md).
+ * Channel |y| <= H, driven by a pressure gradient G = -dp/dx applied as a
+ * body force; fully developed: no slip on the walls, v = 0 and zero normal
+ * traction at inlet/outlet (so p = 0). Plug half-width y0 = tau0/G;
+ *   y0 <= |y| <= H: u = G (H^2 - y^2)/(2 eta_p) - tau0 (H - |y|)/eta_p,
+ *   plug:           u = G (H - y0)^2 / (2 eta_p).
+ * Options: -bn (= y0/H = tau0/(G H), default 0.3), -channel_length. */
+#include "common.h"
+
+typedef struct {
+  PetscReal     G, H;
+  SlumpRheology rheo; /* the yield stress and viscosity in force after options */
+} PoiseuilleCtx;
+
+static PetscErrorCode BinghamParameters(SlumpRheology rheo, PetscReal *tau0, PetscReal *etap)
+{
+  PetscBool has;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", etap));
+  PetscCall(SlumpRheologyHasParameter(rheo, "yield_stress", &has));
+  *tau0 = 0.0;
+  if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", tau0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ExactU(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
+{
+  const PoiseuilleCtx *c = (const PoiseuilleCtx *)ctx;
+  PetscReal            tau0, etap;
+  PetscCall(BinghamParameters(c->rheo, &tau0, &etap));
+  const PetscReal y0 = tau0 / c->G, ay = PetscAbsReal(x[1]);
+  if (y0 >= c->H) u[0] = 0.0;
+  else if (ay <= y0) u[0] = c->G * (c->H - y0) * (c->H - y0) / (2 * etap);
+  else u[0] = c->G * (c->H * c->H - ay * ay) / (2 * etap) - tau0 * (c->H - ay) / etap;
+  u[1] = 0.0;
+  return 0;
+}
+
+static PetscErrorCode ExactP(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar p[], void *ctx)
+{
+  p[0] = 0.0;
+  return 0;
+}
+
+static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, Vec X)
+{
+  PoiseuilleCtx   *c = (PoiseuilleCtx *)scene->ctx;
+  SlumpDiagnostics d;
+  PetscReal        tau0, etap;
+  PetscFunctionBeginUser;
+  PetscCall(BinghamParameters(c->rheo, &tau0, &etap));
+  PetscCall(SlumpProblemComputeDiagnostics(prob, t, X, &d));
+  /* unyielded share of the channel = y0 / H */
+  PetscCall(SlumpSceneAddResult(scene, "plug_half_width", (1.0 - d.yielded_fraction) * c->H));
+  PetscCall(SlumpSceneAddResult(scene, "plug_half_width_exact", PetscMin(tau0 / c->G, c->H)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+{
+  PoiseuilleCtx *c;
+  SlumpRheology  rheo;
+  DM             dm;
+  PetscReal      bn = 0.3, L = 0.5, lower[2], upper[2];
+  const PetscInt compy = 1;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  scene->ctx = c;
+  c->G       = 1.0;
+  c->H       = 1.0;
+  PetscOptionsBegin(comm, NULL, "Scene poiseuille", "");
+  PetscCall(PetscOptionsReal("-bn", "Bingham number tau0/(G H) = plug half-width / H", "", bn, &bn, NULL));
+  PetscCall(PetscOptionsReal("-channel_length", "Channel length", "", L, &L, NULL));
+  PetscOptionsEnd();
+  PetscCheck(bn >= 0, comm, PETSC_ERR_USER_INPUT, "-bn must be non-negative; got %g", (double)bn);
+  PetscCheck(L > 0, comm, PETSC_ERR_USER_INPUT, "-channel_length must be positive; got %g", (double)L);
+  scene->steady    = PETSC_TRUE;
+  scene->mesh_n[0] = 4;
+  scene->mesh_n[1] = 32;
+  lower[0]         = 0.0;
+  lower[1]         = -c->H;
+  upper[0]         = L;
+  upper[1]         = c->H;
+  PetscCall(SlumpSceneCreateMesh(scene, comm, lower, upper, &dm));
+  PetscCall(SlumpProblemSetMesh(prob, dm));
+  PetscCall(DMDestroy(&dm));
+  PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_BODY_FORCE));
+  PetscCall(SlumpProblemSetBodyForce(prob, c->G, 0.0));
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  c->rheo = rheo;
+  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
+  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
+  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->G * c->H));
+  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpProblemAddVelocityBC(prob, "inlet_v", "left", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "right", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpProblemSetFlowRateBoundary(prob, "right"));
+  PetscCall(SlumpProblemSetExactSolution(prob, ExactU, ExactP, c));
+  scene->results = Results;
+  PetscCall(SlumpSceneAddParameter(scene, "bn", bn));
+  PetscCall(SlumpSceneAddParameter(scene, "G", c->G));
+  PetscCall(SlumpSceneAddParameter(scene, "H", c->H));
+  PetscFunctionReturn(0);
+}

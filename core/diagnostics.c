@@ -1,0 +1,176 @@
+/* Diagnostics by finite-element quadrature over the domain, in the norm
+ * convention ||gdot|| = sqrt(1/2 gdot:gdot), gdot = grad u + grad u^T.
+ * They are evaluated on a copy of the solution in an unconstrained layout
+ * (dmDiag) so that boundary values at the current time are included. */
+#include "slumpimpl.h"
+
+static void KineticEnergy(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  PetscScalar s = 0.0;
+  for (PetscInt d = 0; d < dim; ++d) s += u[uOff[0] + d] * u[uOff[0] + d];
+  f[0] = 0.5 * PetscRealPart(constants[SLUMP_C_RHO]) * s;
+}
+
+static void ShearRate(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  PetscScalar gd[9];
+  f[0] = SlumpPwStrainRate(dim, u_x, gd);
+}
+
+static void ShearRateSquared(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  PetscScalar gd[9];
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd);
+  f[0]          = g * g;
+}
+
+static void FlowRate(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar f[])
+{
+  f[0] = 0.0;
+  for (PetscInt d = 0; d < dim; ++d) f[0] += u[uOff[0] + d] * n[d];
+  f[1] = 0.0;
+}
+
+static PetscErrorCode Integrate(SlumpProblem prob, PetscPointFunc obj0, PetscPointFunc obj1, PetscReal out[2])
+{
+  PetscDS     ds;
+  PetscScalar integral[2];
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDS(prob->dmDiag, &ds));
+  PetscCall(PetscDSSetObjective(ds, 0, obj0));
+  PetscCall(PetscDSSetObjective(ds, 1, obj1));
+  PetscCall(DMPlexComputeIntegralFEM(prob->dmDiag, prob->diagX, integral, prob));
+  out[0] = PetscRealPart(integral[0]);
+  out[1] = PetscRealPart(integral[1]);
+  PetscFunctionReturn(0);
+}
+
+/* ||gdot|| of a P2 velocity is the norm of a linear field on each triangle,
+   a convex function, so its maximum over a cell sits at a vertex: the
+   maximum over a discontinuous P1 interpolant is exact. */
+static PetscErrorCode MaxShearRate(SlumpProblem prob, PetscReal *gmax)
+{
+  DM             dmMax;
+  Vec            v;
+  PetscPointFunc funcs[1] = {ShearRate};
+  PetscReal      m;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectQuery((PetscObject)prob->dmDiag, "slump_dg1", (PetscObject *)&dmMax));
+  if (!dmMax) {
+    PetscSpace     P;
+    PetscDualSpace Q;
+    PetscFE        fe, feu;
+    DM             K;
+    PetscInt       dim;
+    PetscCall(DMGetDimension(prob->dm, &dim));
+    PetscCall(PetscSpaceCreate(PETSC_COMM_SELF, &P));
+    PetscCall(PetscSpaceSetType(P, PETSCSPACEPOLYNOMIAL));
+    PetscCall(PetscSpaceSetNumComponents(P, 1));
+    PetscCall(PetscSpaceSetNumVariables(P, dim));
+    PetscCall(PetscSpaceSetDegree(P, 1, PETSC_DETERMINE));
+    PetscCall(PetscSpaceSetUp(P));
+    PetscCall(PetscDualSpaceCreate(PETSC_COMM_SELF, &Q));
+    PetscCall(PetscDualSpaceSetType(Q, PETSCDUALSPACELAGRANGE));
+    PetscCall(DMPlexCreateReferenceCell(PETSC_COMM_SELF, DM_POLYTOPE_TRIANGLE, &K));
+    PetscCall(PetscDualSpaceSetDM(Q, K));
+    PetscCall(DMDestroy(&K));
+    PetscCall(PetscDualSpaceSetNumComponents(Q, 1));
+    PetscCall(PetscDualSpaceSetOrder(Q, 1));
+    PetscCall(PetscDualSpaceLagrangeSetContinuity(Q, PETSC_FALSE));
+    PetscCall(PetscDualSpaceSetUp(Q));
+    PetscCall(PetscFECreate(PETSC_COMM_SELF, &fe));
+    PetscCall(PetscFESetType(fe, PETSCFEBASIC));
+    PetscCall(PetscFESetBasisSpace(fe, P));
+    PetscCall(PetscFESetDualSpace(fe, Q));
+    PetscCall(PetscFESetNumComponents(fe, 1));
+    PetscCall(PetscFESetUp(fe));
+    PetscCall(DMGetField(prob->dmDiag, 0, NULL, (PetscObject *)&feu));
+    PetscCall(PetscFECopyQuadrature(feu, fe));
+    PetscCall(PetscSpaceDestroy(&P));
+    PetscCall(PetscDualSpaceDestroy(&Q));
+    PetscCall(DMClone(prob->dm, &dmMax));
+    PetscCall(DMSetField(dmMax, 0, NULL, (PetscObject)fe));
+    PetscCall(DMCreateDS(dmMax));
+    PetscCall(PetscFEDestroy(&fe));
+    PetscCall(PetscObjectCompose((PetscObject)prob->dmDiag, "slump_dg1", (PetscObject)dmMax));
+    PetscCall(DMDestroy(&dmMax));
+    PetscCall(PetscObjectQuery((PetscObject)prob->dmDiag, "slump_dg1", (PetscObject *)&dmMax));
+  }
+  PetscCall(DMGetGlobalVector(dmMax, &v));
+  PetscCall(DMProjectField(dmMax, 0.0, prob->diagX, funcs, INSERT_VALUES, v));
+  PetscCall(VecMax(v, NULL, &m));
+  PetscCall(DMRestoreGlobalVector(dmMax, &v));
+  *gmax = m;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean)
+{
+  PetscReal r[2];
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
+  PetscCall(Integrate(prob, ShearRate, NULL, r));
+  *mean = r[0] / prob->area;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d)
+{
+  SlumpRheologyPointwise pw;
+  PetscReal              r[2];
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
+  d->t = t;
+  PetscCall(Integrate(prob, KineticEnergy, ShearRate, r));
+  d->kinetic_energy  = r[0];
+  d->mean_shear_rate = r[1] / prob->area;
+  PetscCall(Integrate(prob, ShearRateSquared, pw.diss_yield, r));
+  d->l2_shear_rate = PetscSqrtReal(r[0]);
+  d->dissipation   = r[1];
+  PetscCall(Integrate(prob, pw.yielded, NULL, r));
+  d->yielded_fraction = r[0] / prob->area;
+  PetscCall(MaxShearRate(prob, &d->max_shear_rate));
+  d->flow_rate = 0.0;
+  if (prob->flowRateLabel[0]) {
+    DMLabel     label;
+    PetscScalar q[2];
+    PetscInt    one = 1;
+    PetscCall(DMGetLabel(prob->dmDiag, prob->flowRateLabel, &label));
+    PetscCall(DMPlexComputeBdIntegral(prob->dmDiag, prob->diagX, label, 1, &one, FlowRate, q, prob));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, q, 1, MPIU_SCALAR, MPIU_SUM, prob->comm));
+    d->flow_rate = PetscRealPart(q[0]);
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemComputeErrors(SlumpProblem prob, PetscReal t, Vec X, PetscReal err[2], PetscReal norm[2])
+{
+  SlumpPointFn zero[2], ex[2];
+  void        *ctxs[2] = {prob->exctx, prob->exctx};
+  Vec          Z;
+  PetscFunctionBeginUser;
+  err[0] = err[1] = norm[0] = norm[1] = -1.0;
+  if (!prob->uex) PetscFunctionReturn(0);
+  PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
+  ex[0] = prob->uex;
+  ex[1] = prob->pex;
+  if (!ex[1]) {
+    /* no pressure reference: compare pressure with itself */
+    PetscReal e2[2];
+    SlumpPointFn f2[2] = {prob->uex, prob->uex};
+    PetscCall(DMComputeL2FieldDiff(prob->dmDiag, t, f2, ctxs, prob->diagX, e2));
+    err[0] = e2[0];
+  } else {
+    PetscCall(DMComputeL2FieldDiff(prob->dmDiag, t, ex, ctxs, prob->diagX, err));
+  }
+  /* norms of the exact solution: distance from zero */
+  PetscCall(DMGetGlobalVector(prob->dmDiag, &Z));
+  PetscCall(VecZeroEntries(Z));
+  zero[0] = ex[0];
+  zero[1] = ex[1] ? ex[1] : ex[0];
+  PetscCall(DMComputeL2FieldDiff(prob->dmDiag, t, zero, ctxs, Z, norm));
+  PetscCall(DMRestoreGlobalVector(prob->dmDiag, &Z));
+  if (!ex[1]) err[1] = norm[1] = -1.0;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,190 @@
+/* Fields for ParaView: velocity, pressure, shear rate and effective viscosity
+ * interpolated to P1, written with PETSc's HDF5 viewer (parallel HDF5) into
+ * fields.h5, and an XDMF file fields.xmf that indexes every time written. */
+#include "slumpimpl.h"
+#include <petscviewerhdf5.h>
+#include <petscsf.h>
+#include <sys/stat.h>
+#include <errno.h>
+
+struct _n_SlumpFieldWriter {
+  SlumpProblem prob;
+  DM           dmOut;
+  Vec          Xout;
+  char         dir[PETSC_MAX_PATH_LEN];
+  PetscInt     n, cap, ncells, nverts;
+  PetscReal   *times;
+};
+
+PetscErrorCode SlumpMakeDirectory(MPI_Comm comm, const char dir[])
+{
+  PetscMPIInt rank;
+  int         err = 0;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (rank == 0) {
+    char   path[PETSC_MAX_PATH_LEN];
+    size_t len;
+    PetscCall(PetscStrncpy(path, dir, sizeof(path)));
+    PetscCall(PetscStrlen(path, &len));
+    for (size_t i = 1; i <= len && !err; ++i) {
+      if (path[i] == '/' || path[i] == 0) {
+        char c = path[i];
+        path[i] = 0;
+        if (mkdir(path, 0755) && errno != EEXIST) err = errno;
+        path[i] = c;
+      }
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_OPEN, "Cannot create the output directory '%s' (-output_dir): %s", dir, strerror(err));
+  PetscFunctionReturn(0);
+}
+
+static void CopyVelocity(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  for (PetscInt d = 0; d < dim; ++d) f[d] = u[uOff[0] + d];
+}
+
+static void CopyPressure(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  f[0] = u[uOff[1]];
+}
+
+PetscErrorCode SlumpFieldWriterCreate(SlumpProblem prob, const char dir[], SlumpFieldWriter *writer)
+{
+  SlumpFieldWriter w;
+  const char      *names[4] = {"velocity", "pressure", "shear_rate", "viscosity"};
+  PetscInt         dim, cStart, cEnd, vStart, vEnd;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&w));
+  w->prob = prob;
+  PetscCall(PetscStrncpy(w->dir, dir, sizeof(w->dir)));
+  PetscCall(DMGetDimension(prob->dm, &dim));
+  PetscCall(DMClone(prob->dm, &w->dmOut));
+  for (PetscInt f = 0; f < 4; ++f) {
+    PetscFE fe;
+    PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, f == 0 ? dim : 1, PETSC_TRUE, 1, prob->quadOrder, &fe));
+    PetscCall(PetscObjectSetName((PetscObject)fe, names[f]));
+    PetscCall(DMSetField(w->dmOut, f, NULL, (PetscObject)fe));
+    PetscCall(PetscFEDestroy(&fe));
+  }
+  PetscCall(DMCreateDS(w->dmOut));
+  PetscCall(DMCreateGlobalVector(w->dmOut, &w->Xout));
+  PetscCall(PetscObjectSetName((PetscObject)w->Xout, "fields"));
+  PetscCall(DMPlexGetHeightStratum(prob->dm, 0, &cStart, &cEnd));
+  PetscCall(DMPlexGetDepthStratum(prob->dm, 0, &vStart, &vEnd));
+  *writer = w;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpFieldWriterDestroy(SlumpFieldWriter *w)
+{
+  PetscFunctionBeginUser;
+  if (!*w) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&(*w)->Xout));
+  PetscCall(DMDestroy(&(*w)->dmOut));
+  PetscCall(PetscFree((*w)->times));
+  PetscCall(PetscFree(*w));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode WriteXdmf(SlumpFieldWriter w)
+{
+  char        path[PETSC_MAX_PATH_LEN];
+  FILE       *fp;
+  PetscMPIInt rank;
+  PetscInt    dim;
+  const char *names[4] = {"velocity", "pressure", "shear_rate", "viscosity"};
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(w->prob->comm, &rank));
+  if (rank) PetscFunctionReturn(0);
+  PetscCall(DMGetDimension(w->prob->dm, &dim));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields.xmf", w->dir));
+  fp = fopen(path, "w");
+  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
+  fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
+  fprintf(fp, "  <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  for (PetscInt k = 0; k < w->n; ++k) {
+    fprintf(fp, "   <Grid Name=\"mesh\" GridType=\"Uniform\">\n    <Time Value=\"%.10g\"/>\n", (double)w->times[k]);
+    fprintf(fp, "    <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n", (int)w->ncells);
+    fprintf(fp, "     <DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Format=\"HDF\">fields.h5:/viz/topology/cells</DataItem>\n    </Topology>\n", (int)w->ncells);
+    fprintf(fp, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n    </Geometry>\n", (int)w->nverts, (int)dim);
+    for (PetscInt f = 0; f < 4; ++f) {
+      const PetscInt nc = f == 0 ? dim : 1;
+      fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", names[f], nc > 1 ? "Vector" : "Scalar");
+      fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %d %d\" Type=\"HyperSlab\">\n", (int)w->nverts, (int)nc);
+      fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%d 0 0 1 1 1 1 %d %d</DataItem>\n", (int)k, (int)w->nverts, (int)nc);
+      fprintf(fp, "      <DataItem Dimensions=\"%d %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/%s</DataItem>\n", (int)w->n, (int)w->nverts, (int)nc, names[f]);
+      fprintf(fp, "     </DataItem>\n    </Attribute>\n");
+    }
+    fprintf(fp, "   </Grid>\n");
+  }
+  fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+  fclose(fp);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
+{
+  SlumpProblem           prob = w->prob;
+  SlumpRheologyPointwise pw;
+  PetscPointFunc         funcs[4];
+  PetscDS                ds;
+  PetscViewer            v;
+  char                   path[PETSC_MAX_PATH_LEN];
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  funcs[0] = CopyVelocity;
+  funcs[1] = CopyPressure;
+  funcs[2] = pw.shear_rate;
+  funcs[3] = pw.eta;
+  PetscCall(DMGetDS(w->dmOut, &ds));
+  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
+  PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
+  PetscCall(DMProjectField(w->dmOut, t, prob->diagX, funcs, INSERT_ALL_VALUES, w->Xout));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields.h5", w->dir));
+  PetscCall(PetscViewerHDF5Open(prob->comm, path, w->n ? FILE_MODE_APPEND : FILE_MODE_WRITE, &v));
+  PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
+  if (!w->n) {
+    PetscCall(DMView(w->dmOut, v));
+    PetscInt cStart, cEnd, vStart, vEnd, nl[2];
+    PetscCall(DMPlexGetHeightStratum(prob->dm, 0, &cStart, &cEnd));
+    PetscCall(DMPlexGetDepthStratum(prob->dm, 0, &vStart, &vEnd));
+    /* owned vertices only */
+    {
+      PetscSF            sf;
+      PetscInt           nleaves;
+      const PetscInt    *leaves;
+      PetscInt           owned = vEnd - vStart;
+      PetscCall(DMGetPointSF(prob->dm, &sf));
+      PetscCall(PetscSFGetGraph(sf, NULL, &nleaves, &leaves, NULL));
+      for (PetscInt l = 0; l < nleaves && nleaves > 0; ++l) {
+        PetscInt pt = leaves ? leaves[l] : l;
+        if (pt >= vStart && pt < vEnd) owned--;
+      }
+      nl[0] = cEnd - cStart;
+      nl[1] = owned;
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, nl, 2, MPIU_INT, MPI_SUM, prob->comm));
+    w->ncells = nl[0];
+    w->nverts = nl[1];
+  }
+  PetscCall(PetscViewerHDF5PushTimestepping(v));
+  PetscCall(PetscViewerHDF5SetTimestep(v, w->n));
+  PetscCall(VecView(w->Xout, v));
+  PetscCall(PetscViewerHDF5PopTimestepping(v));
+  PetscCall(PetscViewerPopFormat(v));
+  PetscCall(PetscViewerDestroy(&v));
+  if (w->n == w->cap) {
+    PetscReal *nt;
+    w->cap = w->cap ? 2 * w->cap : 16;
+    PetscCall(PetscMalloc1(w->cap, &nt));
+    PetscCall(PetscArraycpy(nt, w->times, w->n));
+    PetscCall(PetscFree(w->times));
+    w->times = nt;
+  }
+  w->times[w->n++] = t;
+  PetscCall(WriteXdmf(w));
+  PetscFunctionReturn(0);
+}

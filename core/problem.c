@@ -1,0 +1,495 @@
+/* The problem: fields (Taylor-Hood P2/P1), the effects a scene switches on,
+ * boundary conditions, and the constants handed to the pointwise kernels. */
+#include "slumpimpl.h"
+
+const char *const SlumpEffectNames[] = {"inertia", "convection", "body_force"};
+
+PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
+{
+  SlumpProblem p;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&p));
+  p->comm           = comm;
+  p->rho            = 1.0;
+  p->velocityDegree = 2;
+  p->pressureDegree = 1;
+  p->quadOrder      = 6;
+  PetscCall(SlumpRheologyCreate(comm, &p->rheo));
+  *prob = p;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
+{
+  SlumpProblem p = *prob;
+  PetscFunctionBeginUser;
+  if (!p) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&p->locX));
+  PetscCall(VecDestroy(&p->locXdot));
+  PetscCall(VecDestroy(&p->locF));
+  PetscCall(VecDestroy(&p->diagX));
+  PetscCall(DMDestroy(&p->dmDiag));
+  PetscCall(DMDestroy(&p->dm));
+  PetscCall(SlumpRheologyDestroy(&p->rheo));
+  PetscCall(PetscFree(*prob));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetMesh(SlumpProblem prob, DM mesh)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectReference((PetscObject)mesh));
+  PetscCall(DMDestroy(&prob->dm));
+  prob->dm = mesh;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetEffects(SlumpProblem prob, PetscInt effects)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!(effects & SLUMP_EFFECT_CONVECTION) || (effects & SLUMP_EFFECT_INERTIA), prob->comm, PETSC_ERR_USER_INPUT, "Convection needs inertia: switch on inertia too");
+  prob->effects = effects;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetEffects(SlumpProblem prob, PetscInt *effects)
+{
+  PetscFunctionBeginUser;
+  *effects = prob->effects;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetDensity(SlumpProblem prob, PetscReal rho)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(rho > 0.0, prob->comm, PETSC_ERR_USER_INPUT, "-density must be positive; got %g", (double)rho);
+  prob->rho = rho;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetBodyForce(SlumpProblem prob, PetscReal gx, PetscReal gy)
+{
+  PetscFunctionBeginUser;
+  prob->g[0] = gx;
+  prob->g[1] = gy;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetRheology(SlumpProblem prob, SlumpRheology *rheo)
+{
+  PetscFunctionBeginUser;
+  *rheo = prob->rheo;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AddBC(SlumpProblem prob, SlumpBC **bc)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(prob->nbc < SLUMP_MAX_BC, prob->comm, PETSC_ERR_SUP, "At most %d boundary conditions", SLUMP_MAX_BC);
+  *bc = &prob->bc[prob->nbc++];
+  PetscCall(PetscMemzero(*bc, sizeof(**bc)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemAddVelocityBC(SlumpProblem prob, const char name[], const char label[], PetscInt ncomp, const PetscInt comps[], SlumpPointFn g, SlumpPointFn g_t, void *ctx)
+{
+  SlumpBC *bc = NULL;
+  PetscFunctionBeginUser;
+  PetscCall(AddBC(prob, &bc));
+  bc->kind = SLUMP_BC_DIRICHLET;
+  PetscCall(PetscStrncpy(bc->name, name, sizeof(bc->name)));
+  PetscCall(PetscStrncpy(bc->label, label, sizeof(bc->label)));
+  bc->ncomp = comps ? ncomp : 0;
+  for (PetscInt c = 0; c < bc->ncomp; ++c) bc->comps[c] = comps[c];
+  bc->g   = g;
+  bc->g_t = g_t;
+  bc->ctx = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemAddFreeSlipBC(SlumpProblem prob, const char label[])
+{
+  SlumpBC *bc = NULL;
+  PetscFunctionBeginUser;
+  PetscCall(AddBC(prob, &bc));
+  bc->kind = SLUMP_BC_FREESLIP;
+  PetscCall(PetscSNPrintf(bc->name, sizeof(bc->name), "freeslip_%s", label));
+  PetscCall(PetscStrncpy(bc->label, label, sizeof(bc->label)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemAddTractionBC(SlumpProblem prob, const char label[], SlumpTractionFn traction)
+{
+  SlumpBC *bc = NULL;
+  PetscFunctionBeginUser;
+  PetscCall(AddBC(prob, &bc));
+  bc->kind = SLUMP_BC_TRACTION;
+  PetscCall(PetscSNPrintf(bc->name, sizeof(bc->name), "traction_%s", label));
+  PetscCall(PetscStrncpy(bc->label, label, sizeof(bc->label)));
+  bc->traction = traction;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetMomentumSource(SlumpProblem prob, PetscPointFunc f0_u)
+{
+  PetscFunctionBeginUser;
+  prob->momentumSource = f0_u;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetInitialVelocity(SlumpProblem prob, SlumpPointFn u0, void *ctx)
+{
+  PetscFunctionBeginUser;
+  prob->u0    = u0;
+  prob->u0ctx = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetExactSolution(SlumpProblem prob, SlumpPointFn u, SlumpPointFn p, void *ctx)
+{
+  PetscFunctionBeginUser;
+  prob->uex   = u;
+  prob->pex   = p;
+  prob->exctx = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetExactSolution(SlumpProblem prob, SlumpPointFn *u, SlumpPointFn *p, void **ctx)
+{
+  PetscFunctionBeginUser;
+  if (u) *u = prob->uex;
+  if (p) *p = prob->pex;
+  if (ctx) *ctx = prob->exctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetFlowRateBoundary(SlumpProblem prob, const char label[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscStrncpy(prob->flowRateLabel, label, sizeof(prob->flowRateLabel)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob)
+{
+  PetscReal rho = prob->rho;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(prob->comm, NULL, "Problem", "SlumpProblem");
+  PetscCall(PetscOptionsReal("-density", "Density rho", "SlumpProblemSetDensity", rho, &rho, NULL));
+  PetscCall(PetscOptionsRangeInt("-velocity_degree", "Polynomial degree of the velocity", "", prob->velocityDegree, &prob->velocityDegree, NULL, 2, 4));
+  PetscCall(PetscOptionsRangeInt("-quadrature_order", "Quadrature order (exact for polynomials of this degree)", "", prob->quadOrder, &prob->quadOrder, NULL, 2, 20));
+  PetscOptionsEnd();
+  prob->pressureDegree = prob->velocityDegree - 1;
+  PetscCall(SlumpProblemSetDensity(prob, rho));
+  PetscCall(SlumpRheologySetFromOptions(prob->rheo));
+  PetscFunctionReturn(0);
+}
+
+/* Label values present anywhere (collective), so every rank passes the same ids. */
+static PetscErrorCode GetLabelIds(SlumpProblem prob, const char name[], DMLabel *label, PetscInt *nids, PetscInt **ids)
+{
+  IS       valueIS;
+  PetscInt n = 0, gn, has;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLabel(prob->dm, name, label));
+  has = *label ? 1 : 0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &has, 1, MPIU_INT, MPI_MAX, prob->comm));
+  PetscCheck(has, prob->comm, PETSC_ERR_USER_INPUT, "The mesh has no boundary labelled '%s' (a Gmsh mesh needs a physical group of that name)", name);
+  if (!*label) {
+    PetscCall(DMCreateLabel(prob->dm, name));
+    PetscCall(DMGetLabel(prob->dm, name, label));
+  }
+  PetscCall(DMLabelGetValueIS(*label, &valueIS));
+  PetscCall(ISGetLocalSize(valueIS, &n));
+  {
+    PetscInt        maxv = -1, gmaxv;
+    const PetscInt *v;
+    PetscCall(ISGetIndices(valueIS, &v));
+    for (PetscInt i = 0; i < n; ++i) maxv = PetscMax(maxv, v[i]);
+    PetscCall(ISRestoreIndices(valueIS, &v));
+    PetscCall(MPIU_Allreduce(&maxv, &gmaxv, 1, MPIU_INT, MPI_MAX, prob->comm));
+    /* every value up to the max that any rank has */
+    PetscInt *flag;
+    PetscCall(PetscCalloc1(gmaxv + 2, &flag));
+    PetscCall(ISGetIndices(valueIS, &v));
+    for (PetscInt i = 0; i < n; ++i)
+      if (v[i] >= 0) flag[v[i]] = 1;
+    PetscCall(ISRestoreIndices(valueIS, &v));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flag, gmaxv + 1, MPIU_INT, MPI_MAX, prob->comm));
+    gn = 0;
+    for (PetscInt i = 0; i <= gmaxv; ++i) gn += flag[i];
+    PetscCall(PetscMalloc1(PetscMax(gn, 1), ids));
+    gn = 0;
+    for (PetscInt i = 0; i <= gmaxv; ++i)
+      if (flag[i]) (*ids)[gn++] = i;
+    PetscCall(PetscFree(flag));
+  }
+  PetscCall(ISDestroy(&valueIS));
+  *nids = gn;
+  PetscFunctionReturn(0);
+}
+
+/* The velocity component normal to an axis-aligned boundary (free slip). */
+static PetscErrorCode FreeSlipComponent(SlumpProblem prob, DMLabel label, PetscInt nids, const PetscInt ids[], PetscInt *comp)
+{
+  PetscInt fStart, fEnd, votes[2] = {0, 0}, bad = 0;
+  PetscFunctionBeginUser;
+  PetscCall(DMPlexGetHeightStratum(prob->dm, 1, &fStart, &fEnd));
+  for (PetscInt k = 0; k < nids; ++k) {
+    IS pts;
+    PetscCall(DMLabelGetStratumIS(label, ids[k], &pts));
+    if (!pts) continue;
+    const PetscInt *p;
+    PetscInt        n;
+    PetscCall(ISGetLocalSize(pts, &n));
+    PetscCall(ISGetIndices(pts, &p));
+    for (PetscInt i = 0; i < n; ++i) {
+      PetscReal area, c[3], nrm[3];
+      if (p[i] < fStart || p[i] >= fEnd) continue;
+      PetscCall(DMPlexComputeCellGeometryFVM(prob->dm, p[i], &area, c, nrm));
+      if (PetscAbsReal(nrm[1]) < 1e-8 * PetscAbsReal(nrm[0])) votes[0]++;
+      else if (PetscAbsReal(nrm[0]) < 1e-8 * PetscAbsReal(nrm[1])) votes[1]++;
+      else bad++;
+    }
+    PetscCall(ISRestoreIndices(pts, &p));
+    PetscCall(ISDestroy(&pts));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, votes, 2, MPIU_INT, MPI_SUM, prob->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_SUM, prob->comm));
+  PetscCheck(!bad && !(votes[0] && votes[1]), prob->comm, PETSC_ERR_SUP, "Free slip is supported on straight boundaries parallel to an axis only");
+  *comp = votes[0] ? 0 : 1;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode ZeroFn(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
+{
+  for (PetscInt c = 0; c < Nc; ++c) u[c] = 0.0;
+  return 0;
+}
+
+PetscErrorCode SlumpProblemSetPointwise(SlumpProblem prob, PetscDS ds)
+{
+  SlumpRheologyPointwise pw;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  PetscCall(PetscDSSetResidual(ds, 0, prob->momentumSource ? prob->momentumSource : SlumpPwSelectMomentumF0(prob->effects), pw.f1_u));
+  PetscCall(PetscDSSetResidual(ds, 1, SlumpPwContinuityF0, NULL));
+  PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectG0(prob->effects), SlumpPwSelectG1(prob->effects), NULL, pw.g3_uu));
+  PetscCall(PetscDSSetJacobian(ds, 0, 1, NULL, NULL, pw.g2_up, NULL));
+  PetscCall(PetscDSSetJacobian(ds, 1, 0, NULL, SlumpPwContinuityG1, NULL, NULL));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CreateFields(SlumpProblem prob, DM dm)
+{
+  PetscFE  fe[2];
+  PetscInt dim;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(dm, &dim));
+  PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, dim, PETSC_TRUE, prob->velocityDegree, prob->quadOrder, &fe[0]));
+  PetscCall(PetscObjectSetName((PetscObject)fe[0], "velocity"));
+  PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, 1, PETSC_TRUE, prob->pressureDegree, prob->quadOrder, &fe[1]));
+  PetscCall(PetscFECopyQuadrature(fe[0], fe[1]));
+  PetscCall(PetscObjectSetName((PetscObject)fe[1], "pressure"));
+  PetscCall(DMSetField(dm, 0, NULL, (PetscObject)fe[0]));
+  PetscCall(DMSetField(dm, 1, NULL, (PetscObject)fe[1]));
+  PetscCall(DMCreateDS(dm));
+  PetscCall(PetscFEDestroy(&fe[0]));
+  PetscCall(PetscFEDestroy(&fe[1]));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
+{
+  PetscDS  ds;
+  PetscInt n;
+  PetscFunctionBeginUser;
+  PetscCall(PetscArrayzero(prob->constants, SLUMP_C_NUM));
+  prob->constants[SLUMP_C_RHO]     = prob->rho;
+  prob->constants[SLUMP_C_GX]      = prob->g[0];
+  prob->constants[SLUMP_C_GY]      = prob->g[1];
+  prob->constants[SLUMP_C_JACMODE] = prob->jacmode;
+  PetscCall(SlumpRheologyGetConstants(prob->rheo, &n, &prob->constants[SLUMP_C_RHEO]));
+  PetscCall(DMGetDS(prob->dm, &ds));
+  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
+  PetscCall(DMGetDS(prob->dmDiag, &ds));
+  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemUpdateConstants(SlumpProblem prob)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyCheck(prob->rheo));
+  PetscCall(SlumpProblemSetConstantsAll(prob));
+  PetscFunctionReturn(0);
+}
+
+static void AreaObjective(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  f[0] = 1.0;
+}
+
+PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
+{
+  PetscDS ds;
+  PetscFunctionBeginUser;
+  PetscCheck(prob->dm, prob->comm, PETSC_ERR_ORDER, "Set a mesh before SlumpProblemSetUp()");
+  if (prob->setup) PetscFunctionReturn(0);
+  PetscCall(SlumpRheologyCheck(prob->rheo));
+  PetscCall(DMClone(prob->dm, &prob->dmDiag));
+  PetscCall(CreateFields(prob, prob->dm));
+  PetscCall(CreateFields(prob, prob->dmDiag));
+  PetscCall(DMGetDS(prob->dm, &ds));
+  PetscCall(SlumpProblemSetPointwise(prob, ds));
+  for (PetscInt b = 0; b < prob->nbc; ++b) {
+    SlumpBC  *bc = &prob->bc[b];
+    DMLabel   label;
+    PetscInt  nids, *ids;
+    PetscCall(GetLabelIds(prob, bc->label, &label, &nids, &ids));
+    switch (bc->kind) {
+    case SLUMP_BC_DIRICHLET:
+      PetscCall(DMAddBoundary(prob->dm, DM_BC_ESSENTIAL, bc->name, label, nids, ids, 0, bc->ncomp, bc->ncomp ? bc->comps : NULL, (void (*)(void))(bc->g ? bc->g : ZeroFn), (void (*)(void))(bc->g_t ? bc->g_t : ZeroFn), bc->ctx, NULL));
+      break;
+    case SLUMP_BC_FREESLIP: {
+      PetscInt comp;
+      PetscCall(FreeSlipComponent(prob, label, nids, ids, &comp));
+      PetscCall(DMAddBoundary(prob->dm, DM_BC_ESSENTIAL, bc->name, label, nids, ids, 0, 1, &comp, (void (*)(void))ZeroFn, (void (*)(void))ZeroFn, NULL, NULL));
+    } break;
+    case SLUMP_BC_TRACTION: {
+      PetscInt     bd;
+      PetscWeakForm wf;
+      PetscCall(DMAddBoundary(prob->dm, DM_BC_NATURAL, bc->name, label, nids, ids, 0, 0, NULL, NULL, NULL, NULL, &bd));
+      PetscCall(PetscDSGetBoundary(ds, bd, &wf, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL));
+      for (PetscInt k = 0; k < nids; ++k) PetscCall(PetscWeakFormSetIndexBdResidual(wf, label, ids[k], 0, 0, 0, bc->traction, 0, NULL));
+    } break;
+    }
+    PetscCall(PetscFree(ids));
+  }
+  PetscCall(SlumpProblemSetConstantsAll(prob));
+  PetscCall(DMCreateLocalVector(prob->dm, &prob->locX));
+  PetscCall(VecDuplicate(prob->locX, &prob->locXdot));
+  PetscCall(VecDuplicate(prob->locX, &prob->locF));
+  PetscCall(DMCreateGlobalVector(prob->dmDiag, &prob->diagX));
+  {
+    Vec       tmp;
+    PetscInt  n1, n2;
+    PetscCall(DMGetLocalVector(prob->dmDiag, &tmp));
+    PetscCall(VecGetSize(tmp, &n1));
+    PetscCall(VecGetSize(prob->locX, &n2));
+    PetscCall(DMRestoreLocalVector(prob->dmDiag, &tmp));
+    PetscCheck(n1 == n2, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Local layouts of the solution and diagnostic DMs differ");
+  }
+  {
+    PetscScalar integral[2];
+    PetscCall(DMGetDS(prob->dmDiag, &ds));
+    PetscCall(PetscDSSetObjective(ds, 0, AreaObjective));
+    PetscCall(PetscDSSetObjective(ds, 1, NULL));
+    PetscCall(VecZeroEntries(prob->diagX));
+    PetscCall(DMPlexComputeIntegralFEM(prob->dmDiag, prob->diagX, integral, NULL));
+    prob->area = PetscRealPart(integral[0]);
+  }
+  prob->setup = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemView(SlumpProblem prob, PetscViewer viewer)
+{
+  PetscInt N, Nu, nc, cStart, cEnd;
+  IS       isu, isp;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetFieldIS(prob, &isu, &isp));
+  PetscCall(ISGetSize(isu, &Nu));
+  PetscCall(ISGetSize(isp, &N));
+  PetscCall(ISDestroy(&isu));
+  PetscCall(ISDestroy(&isp));
+  PetscCall(DMPlexGetHeightStratum(prob->dm, 0, &cStart, &cEnd));
+  nc = cEnd - cStart;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, prob->comm));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; P%" PetscInt_FMT "/P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " velocity, %" PetscInt_FMT " pressure\n", nc, prob->velocityDegree, prob->pressureDegree, Nu, N));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "effects:"));
+  if (!prob->effects) PetscCall(PetscViewerASCIIPrintf(viewer, " none (steady Stokes: no differential unknowns)"));
+  for (PetscInt e = 0; e < 3; ++e)
+    if (prob->effects & (1 << e)) PetscCall(PetscViewerASCIIPrintf(viewer, " %s", SlumpEffectNames[e]));
+  if (prob->momentumSource) PetscCall(PetscViewerASCIIPrintf(viewer, " scene_source"));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+  PetscCall(SlumpRheologyView(prob->rheo, viewer));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetDM(SlumpProblem prob, DM *dm)
+{
+  PetscFunctionBeginUser;
+  *dm = prob->dm;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemCreateVector(SlumpProblem prob, Vec *X)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateGlobalVector(prob->dm, X));
+  PetscCall(VecZeroEntries(*X));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemCreateMatrix(SlumpProblem prob, Mat *J)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMSetMatType(prob->dm, MATAIJ));
+  PetscCall(DMCreateMatrix(prob->dm, J));
+  PetscCall(MatSetOption(*J, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetFieldIS(SlumpProblem prob, IS *isu, IS *isp)
+{
+  IS      *is;
+  PetscInt nf;
+  PetscFunctionBeginUser;
+  PetscCall(DMCreateFieldIS(prob->dm, &nf, NULL, &is));
+  *isu = is[0];
+  *isp = is[1];
+  PetscCall(PetscFree(is));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetDifferentialMarker(SlumpProblem prob, Vec id)
+{
+  IS isu, isp;
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(id));
+  if (prob->effects & SLUMP_EFFECT_INERTIA) {
+    Vec sub;
+    PetscCall(SlumpProblemGetFieldIS(prob, &isu, &isp));
+    PetscCall(VecGetSubVector(id, isu, &sub));
+    PetscCall(VecSet(sub, 1.0));
+    PetscCall(VecRestoreSubVector(id, isu, &sub));
+    PetscCall(ISDestroy(&isu));
+    PetscCall(ISDestroy(&isp));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemProjectInitialState(SlumpProblem prob, PetscReal t, Vec X)
+{
+  SlumpPointFn funcs[2] = {prob->u0 ? prob->u0 : ZeroFn, ZeroFn};
+  void        *ctxs[2]  = {prob->u0ctx, NULL};
+  PetscFunctionBeginUser;
+  PetscCall(DMProjectFunction(prob->dm, t, funcs, ctxs, INSERT_ALL_VALUES, X));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetCounters(SlumpProblem prob, PetscInt *nres, PetscInt *njac)
+{
+  PetscFunctionBeginUser;
+  if (nres) *nres = prob->nres;
+  if (njac) *njac = prob->njac;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetArea(SlumpProblem prob, PetscReal *area)
+{
+  PetscFunctionBeginUser;
+  *area = prob->area;
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,70 @@
+/* The semi-discrete DAE F(t, X, Xdot) and its Jacobian on global vectors:
+ * global -> local, insert boundary values (and their time derivatives),
+ * pointwise assembly by DMPlex, local -> global. */
+#include "slumpimpl.h"
+
+static PetscErrorCode FillLocal(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(prob->locX));
+  PetscCall(DMGlobalToLocal(prob->dm, X, INSERT_VALUES, prob->locX));
+  PetscCall(DMPlexInsertBoundaryValues(prob->dm, PETSC_TRUE, prob->locX, t, NULL, NULL, NULL));
+  PetscCall(VecZeroEntries(prob->locXdot));
+  if (Xdot) PetscCall(DMGlobalToLocal(prob->dm, Xdot, INSERT_VALUES, prob->locXdot));
+  PetscCall(DMPlexInsertTimeDerivativeBoundaryValues(prob->dm, PETSC_TRUE, prob->locXdot, t, NULL, NULL, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemResidual(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot, Vec F)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FillLocal(prob, t, X, Xdot));
+  PetscCall(VecZeroEntries(prob->locF));
+  PetscCall(DMPlexTSComputeIFunctionFEM(prob->dm, t, prob->locX, prob->locXdot, prob->locF, prob));
+  PetscCall(VecZeroEntries(F));
+  PetscCall(DMLocalToGlobal(prob->dm, prob->locF, ADD_VALUES, F));
+  prob->nres++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemJacobian(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot, PetscReal shift, Mat J)
+{
+  PetscFunctionBeginUser;
+  PetscCall(FillLocal(prob, t, X, Xdot));
+  PetscCall(DMPlexTSComputeIJacobianFEM(prob->dm, t, prob->locX, prob->locXdot, shift, J, J, prob));
+  prob->njac++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemInitJacobian(SlumpProblem prob, PetscReal t, Vec X, Mat J)
+{
+  PetscFunctionBeginUser;
+  prob->jacmode = 1;
+  PetscCall(SlumpProblemSetConstantsAll(prob));
+  PetscCall(SlumpProblemJacobian(prob, t, X, NULL, 1.0, J));
+  prob->jacmode = 0;
+  PetscCall(SlumpProblemSetConstantsAll(prob));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemFillDiagVector(SlumpProblem prob, PetscReal t, Vec X, Vec Xdiag)
+{
+  Vec                loc;
+  const PetscScalar *a;
+  PetscScalar       *b;
+  PetscInt           n;
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(prob->locX));
+  PetscCall(DMGlobalToLocal(prob->dm, X, INSERT_VALUES, prob->locX));
+  PetscCall(DMPlexInsertBoundaryValues(prob->dm, PETSC_TRUE, prob->locX, t, NULL, NULL, NULL));
+  PetscCall(DMGetLocalVector(prob->dmDiag, &loc));
+  PetscCall(VecGetLocalSize(loc, &n));
+  PetscCall(VecGetArrayRead(prob->locX, &a));
+  PetscCall(VecGetArray(loc, &b));
+  PetscCall(PetscArraycpy(b, a, n));
+  PetscCall(VecRestoreArray(loc, &b));
+  PetscCall(VecRestoreArrayRead(prob->locX, &a));
+  PetscCall(DMLocalToGlobal(prob->dmDiag, loc, INSERT_VALUES, Xdiag));
+  PetscCall(DMRestoreLocalVector(prob->dmDiag, &loc));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,133 @@
+/* slump: viscoplastic and dense granular flows that slow down and stop.
+ *
+ * Public interface of the core: mesh, fields, effects, boundary conditions,
+ * the semi-discrete residual F(t, y, y') and its Jacobian, diagnostics and
+ * outputs. Rheology (slumprheology.h), time integration (slumptimeint.h) and
+ * scenes (slumpscene.h) build on it. */
+#pragma once
+
+#include <petscdmplex.h>
+#include <petscds.h>
+#include <petscksp.h>
+
+#define SLUMP_VERSION_STRING "0.1.0"
+
+typedef struct _p_SlumpRheology *SlumpRheology;
+typedef struct _n_SlumpProblem  *SlumpProblem;
+
+/* ------------------------------------------------------------------ mesh */
+/* Rectangle [x0,x1] x [y0,y1], nx x ny squares each cut into two triangles.
+   Boundary faces carry the labels "bottom", "right", "top", "left" (value 1)
+   and "boundary". On more than one rank the cells are partitioned with METIS
+   (-petscpartitioner_type overrides). */
+PETSC_EXTERN PetscErrorCode SlumpMeshCreateRectangle(MPI_Comm comm, PetscInt nx, PetscInt ny, const PetscReal lower[2], const PetscReal upper[2], DM *dm);
+/* Gmsh .msh file; physical names become labels. Distributed like the rectangle. */
+PETSC_EXTERN PetscErrorCode SlumpMeshCreateGmsh(MPI_Comm comm, const char filename[], DM *dm);
+/* Partition a mesh held on rank 0 with METIS (k-way on the cell dual graph) and distribute it. */
+PETSC_EXTERN PetscErrorCode SlumpMeshDistribute(DM *dm);
+/* Smallest edge length over the mesh (collective). */
+PETSC_EXTERN PetscErrorCode SlumpMeshGetMinEdgeLength(DM dm, PetscReal *hmin);
+
+/* --------------------------------------------------------------- effects */
+/* Each physical effect is switched on by the scene. What is off is neither
+   assembled nor stored. Without SLUMP_EFFECT_INERTIA there is no time
+   derivative and every unknown is algebraic. */
+typedef enum {
+  SLUMP_EFFECT_INERTIA    = 1 << 0, /* rho du/dt                          */
+  SLUMP_EFFECT_CONVECTION = 1 << 1, /* rho u . grad u (needs inertia)     */
+  SLUMP_EFFECT_BODY_FORCE = 1 << 2  /* rho g, or an imposed pressure gradient */
+} SlumpEffect;
+PETSC_EXTERN const char *const SlumpEffectNames[];
+
+/* Point function, PETSc's simple form: u[Nc] = f(t, x). */
+typedef PetscErrorCode (*SlumpPointFn)(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx);
+/* Boundary pointwise term f0 = -traction (PETSc's PetscBdPointFunc: it
+   receives x and the outward normal n, and the kernels' constants). */
+typedef PetscBdPointFunc SlumpTractionFn;
+
+/* Constants shared by every pointwise kernel (PetscDSSetConstants). The
+   rheology's parameters follow from SLUMP_C_RHEO on. */
+enum {
+  SLUMP_C_RHO     = 0, /* density                                        */
+  SLUMP_C_GX      = 1, /* body force per unit mass, x                    */
+  SLUMP_C_GY      = 2, /* body force per unit mass, y                    */
+  SLUMP_C_JACMODE = 3, /* 0: full Jacobian; 1: [rho M, B^T; B, 0] only    */
+  SLUMP_C_RHEO    = 8, /* first rheology parameter                       */
+  SLUMP_C_RHEO_MAX = 16,
+  SLUMP_C_NUM     = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX
+};
+
+/* --------------------------------------------------------------- problem */
+PETSC_EXTERN PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob);
+PETSC_EXTERN PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetMesh(SlumpProblem prob, DM mesh);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetEffects(SlumpProblem prob, PetscInt effects);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetEffects(SlumpProblem prob, PetscInt *effects);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetDensity(SlumpProblem prob, PetscReal rho);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetBodyForce(SlumpProblem prob, PetscReal gx, PetscReal gy);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetRheology(SlumpProblem prob, SlumpRheology *rheo);
+/* Dirichlet velocity on every face of label `label`: components comps[ncomp]
+   (NULL: all) take g(t, x); g_t is its time derivative (NULL: zero). */
+PETSC_EXTERN PetscErrorCode SlumpProblemAddVelocityBC(SlumpProblem prob, const char name[], const char label[], PetscInt ncomp, const PetscInt comps[], SlumpPointFn g, SlumpPointFn g_t, void *ctx);
+/* Zero normal velocity, tangential traction free (axis-aligned boundaries). */
+PETSC_EXTERN PetscErrorCode SlumpProblemAddFreeSlipBC(SlumpProblem prob, const char label[]);
+/* Imposed traction (natural condition); a label without a condition is traction free. */
+PETSC_EXTERN PetscErrorCode SlumpProblemAddTractionBC(SlumpProblem prob, const char label[], SlumpTractionFn traction);
+/* Replace the momentum source (body force) by a scene's own pointwise term f0_u. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetMomentumSource(SlumpProblem prob, PetscPointFunc f0_u);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetInitialVelocity(SlumpProblem prob, SlumpPointFn u0, void *ctx);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetExactSolution(SlumpProblem prob, SlumpPointFn u, SlumpPointFn p, void *ctx);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetExactSolution(SlumpProblem prob, SlumpPointFn *u, SlumpPointFn *p, void **ctx);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetUp(SlumpProblem prob);
+PETSC_EXTERN PetscErrorCode SlumpProblemView(SlumpProblem prob, PetscViewer viewer);
+/* Push the current physical and rheological parameters into the kernels'
+   constants (call after changing them between solves). */
+PETSC_EXTERN PetscErrorCode SlumpProblemUpdateConstants(SlumpProblem prob);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetDM(SlumpProblem prob, DM *dm);
+PETSC_EXTERN PetscErrorCode SlumpProblemCreateVector(SlumpProblem prob, Vec *X);
+PETSC_EXTERN PetscErrorCode SlumpProblemCreateMatrix(SlumpProblem prob, Mat *J);
+/* Index sets of the velocity and pressure unknowns in the global vector. */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetFieldIS(SlumpProblem prob, IS *isu, IS *isp);
+/* Differential (1) / algebraic (0) marker of every unknown. */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetDifferentialMarker(SlumpProblem prob, Vec id);
+PETSC_EXTERN PetscErrorCode SlumpProblemProjectInitialState(SlumpProblem prob, PetscReal t, Vec X);
+
+/* The DAE: F(t, X, Xdot) = 0 on the free (non-Dirichlet) unknowns. */
+PETSC_EXTERN PetscErrorCode SlumpProblemResidual(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot, Vec F);
+/* J = dF/dX + shift dF/dXdot. */
+PETSC_EXTERN PetscErrorCode SlumpProblemJacobian(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot, PetscReal shift, Mat J);
+/* Jacobian of the consistent-initialisation system [rho M, B^T; B, 0]. */
+PETSC_EXTERN PetscErrorCode SlumpProblemInitJacobian(SlumpProblem prob, PetscReal t, Vec X, Mat J);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetCounters(SlumpProblem prob, PetscInt *nres, PetscInt *njac);
+
+/* ----------------------------------------------------------- diagnostics */
+typedef struct {
+  PetscReal t;
+  PetscReal kinetic_energy;     /* 1/2 int rho |u|^2                          */
+  PetscReal mean_shear_rate;    /* (1/|Omega|) int ||gdot||                  */
+  PetscReal max_shear_rate;     /* max ||gdot|| (exact for P2: cell vertices) */
+  PetscReal l2_shear_rate;      /* (int ||gdot||^2)^(1/2)                     */
+  PetscReal dissipation;        /* int tau : D = int eta ||gdot||^2           */
+  PetscReal yielded_fraction;   /* |{||tau|| > tau_y}| / |Omega| (1 if no yield stress) */
+  PetscReal flow_rate;          /* int u . n over the flow-rate boundary, if any */
+} SlumpDiagnostics;
+
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d);
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean);
+/* Boundary over which the flow rate diagnostic integrates u . n. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetFlowRateBoundary(SlumpProblem prob, const char label[]);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetArea(SlumpProblem prob, PetscReal *area);
+/* L2 errors of velocity and pressure against the exact solution (if any). */
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeErrors(SlumpProblem prob, PetscReal t, Vec X, PetscReal err[2], PetscReal norm[2]);
+
+/* ---------------------------------------------------------------- output */
+/* Fields (velocity, pressure, shear rate, effective viscosity, on P1) at
+   time t into dir/fields.h5, and dir/fields.xmf listing every time written. */
+typedef struct _n_SlumpFieldWriter *SlumpFieldWriter;
+PETSC_EXTERN PetscErrorCode SlumpFieldWriterCreate(SlumpProblem prob, const char dir[], SlumpFieldWriter *w);
+PETSC_EXTERN PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X);
+PETSC_EXTERN PetscErrorCode SlumpFieldWriterDestroy(SlumpFieldWriter *w);
+
+/* Make a directory and its parents (rank 0; collective). */
+PETSC_EXTERN PetscErrorCode SlumpMakeDirectory(MPI_Comm comm, const char dir[]);

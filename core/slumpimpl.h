@@ -1,0 +1,56 @@
+/* Private: the problem object. */
+#pragma once
+
+#include "slump.h"
+#include "slumprheology.h"
+#include "slumppointwise.h"
+
+#define SLUMP_MAX_BC 16
+
+typedef enum { SLUMP_BC_DIRICHLET, SLUMP_BC_FREESLIP, SLUMP_BC_TRACTION } SlumpBCKind;
+
+typedef struct {
+  SlumpBCKind     kind;
+  char            name[64];
+  char            label[64];
+  PetscInt        ncomp;
+  PetscInt        comps[3];
+  SlumpPointFn    g, g_t;
+  SlumpTractionFn traction;
+  void           *ctx;
+} SlumpBC;
+
+struct _n_SlumpProblem {
+  MPI_Comm      comm;
+  DM            dm;       /* solution: u (P2), p (P1), Dirichlet dofs constrained out */
+  DM            dmDiag;   /* same fields, no constraints: diagnostics and projections */
+  PetscInt      effects;
+  PetscReal     rho, g[2];
+  PetscInt      velocityDegree, pressureDegree, quadOrder;
+  SlumpRheology rheo;
+  PetscInt      nbc;
+  SlumpBC       bc[SLUMP_MAX_BC];
+  PetscPointFunc momentumSource;
+  SlumpPointFn  u0, uex, pex;
+  void         *u0ctx, *exctx;
+  char          flowRateLabel[64];
+  PetscBool     setup;
+  PetscReal     area;
+  PetscScalar   constants[SLUMP_C_NUM];
+  PetscInt      jacmode;
+  /* work */
+  Vec           locX, locXdot, locF, diagX;
+  PetscInt      nres, njac;
+};
+
+PETSC_INTERN PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem);
+/* Local solution with boundary values at time t, copied into dmDiag's global layout. */
+PETSC_INTERN PetscErrorCode SlumpProblemFillDiagVector(SlumpProblem, PetscReal t, Vec X, Vec Xdiag);
+PETSC_INTERN PetscErrorCode SlumpProblemSetPointwise(SlumpProblem, PetscDS ds);
+
+/* core pointwise (pointwise.c) */
+PETSC_INTERN PetscPointFunc SlumpPwSelectMomentumF0(PetscInt effects);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG0(PetscInt effects);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG1(PetscInt effects);
+PETSC_INTERN void           SlumpPwContinuityF0(SLUMP_PW_ARGS, PetscScalar f0[]);
+PETSC_INTERN void           SlumpPwContinuityG1(SLUMP_PWJ_ARGS, PetscScalar g1[]);

@@ -1,0 +1,119 @@
+/* Private: inline helpers shared by the pointwise kernels (quadrature-point
+ * code only: no allocation, no MPI, no PETSc object calls).
+ *
+ * Norm convention: gdot = grad u + grad u^T, ||gdot|| = sqrt(1/2 gdot:gdot),
+ * tau = eta gdot. u_x[c*dim + d] = d u_c / d x_d. */
+#pragma once
+
+#include "slumprheology.h"
+
+#define SLUMP_PW_ARGS \
+  PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], \
+    const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, const PetscReal x[], \
+    PetscInt numConstants, const PetscScalar constants[]
+#define SLUMP_PWJ_ARGS \
+  PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], \
+    const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, PetscReal u_tShift, \
+    const PetscReal x[], PetscInt numConstants, const PetscScalar constants[]
+
+/* Below this shear rate the tangent's rank-one term (O(||gdot||)) is dropped. */
+#define SLUMP_GDOT_TINY 1e-300
+
+/* gd[dim*dim] = grad u + grad u^T; returns ||gdot||. */
+static inline PetscReal SlumpPwStrainRate(PetscInt dim, const PetscScalar u_x[], PetscScalar gd[])
+{
+  PetscReal s = 0.0;
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt d = 0; d < dim; ++d) {
+      gd[c * dim + d] = u_x[c * dim + d] + u_x[d * dim + c];
+      s += PetscRealPart(gd[c * dim + d] * gd[c * dim + d]);
+    }
+  return PetscSqrtReal(0.5 * s);
+}
+
+static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscScalar prm[], SlumpViscosityKernel k, PetscScalar f1[])
+{
+  PetscScalar gd[9];
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty;
+  k(prm, g, PetscRealPart(p), &eta, &de_dg, &de_dp, &ty);
+  for (PetscInt c = 0; c < dim; ++c) {
+    for (PetscInt d = 0; d < dim; ++d) f1[c * dim + d] = eta * gd[c * dim + d];
+    f1[c * dim + c] -= p;
+  }
+}
+
+/* d f1[c,d] / d u_x[e,f] = eta (delta_ce delta_df + delta_de delta_cf) + eta' gd_cd gd_ef / ||gdot||.
+   jacmode 1 (consistent initialisation) drops the viscous block. */
+static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g3[])
+{
+  PetscScalar gd[9];
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty;
+  const PetscInt n = dim * dim;
+  if (jacmode == 1) {
+    for (PetscInt i = 0; i < n * n; ++i) g3[i] = 0.0;
+    return;
+  }
+  k(prm, g, PetscRealPart(p), &eta, &de_dg, &de_dp, &ty);
+  const PetscReal r = g > SLUMP_GDOT_TINY ? de_dg / g : 0.0;
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt d = 0; d < dim; ++d)
+      for (PetscInt e = 0; e < dim; ++e)
+        for (PetscInt f = 0; f < dim; ++f) {
+          PetscScalar v = r * gd[c * dim + d] * gd[e * dim + f];
+          if (c == e && d == f) v += eta;
+          if (d == e && c == f) v += eta;
+          g3[((c * dim + e) * dim + d) * dim + f] = v;
+        }
+}
+
+/* d f1[c,d] / d p = -delta_cd + (d eta/dp) gd_cd. */
+static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g2[])
+{
+  PetscScalar gd[9];
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp = 0.0, ty;
+  if (jacmode != 1) k(prm, g, PetscRealPart(p), &eta, &de_dg, &de_dp, &ty);
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = de_dp * gd[c * dim + d] - (c == d ? 1.0 : 0.0);
+}
+
+/* Every model file instantiates its pointwise set from its kernel. */
+#define SLUMP_RHEOLOGY_DEFINE_POINTWISE(NAME, KERNEL) \
+  static void NAME##_f1_u(SLUMP_PW_ARGS, PetscScalar f1[]) \
+  { \
+    SlumpPwF1(dim, u_x, u[uOff[1]], &constants[SLUMP_C_RHEO], KERNEL, f1); \
+  } \
+  static void NAME##_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
+  { \
+    SlumpPwG3(dim, u_x, u[uOff[1]], &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g3); \
+  } \
+  static void NAME##_g2_up(SLUMP_PWJ_ARGS, PetscScalar g2[]) \
+  { \
+    SlumpPwG2(dim, u_x, u[uOff[1]], &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g2); \
+  } \
+  static void NAME##_eta(SLUMP_PW_ARGS, PetscScalar f[]) \
+  { \
+    PetscScalar gd[9]; \
+    PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), &eta, &d1_, &d2_, &ty); \
+    f[0] = eta; \
+  } \
+  static void NAME##_shear_rate(SLUMP_PW_ARGS, PetscScalar f[]) \
+  { \
+    PetscScalar gd[9]; \
+    f[0] = SlumpPwStrainRate(dim, u_x, gd); \
+  } \
+  static void NAME##_dissipation(SLUMP_PW_ARGS, PetscScalar f[]) \
+  { \
+    PetscScalar gd[9]; \
+    PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), &eta, &d1_, &d2_, &ty); \
+    f[0] = eta * g * g; \
+  } \
+  static void NAME##_yielded(SLUMP_PW_ARGS, PetscScalar f[]) \
+  { \
+    PetscScalar gd[9]; \
+    PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), &eta, &d1_, &d2_, &ty); \
+    f[0] = (eta * g > ty) ? 1.0 : 0.0; \
+  } \
+  static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded};

@@ -1,0 +1,61 @@
+/* slump rheology: constitutive models as pluggable, registered callbacks.
+ *
+ * A model maps the shear-rate magnitude ||gdot|| = sqrt(1/2 gdot:gdot),
+ * gdot = grad u + grad u^T, and the pressure p to an effective viscosity
+ * eta_eff (tau = eta_eff gdot), returning d eta/d||gdot|| and d eta/dp so the
+ * Newton Jacobian is exact, and its yield stress (for yielded/unyielded
+ * diagnostics). Parameters are named, read from options, checked, and may
+ * change between solves (continuation, sweeps) without rebuilding anything. */
+#pragma once
+
+#include "slump.h"
+
+typedef const char *SlumpRheologyType;
+#define SLUMP_RHEOLOGY_NEWTONIAN      "newtonian"
+#define SLUMP_RHEOLOGY_PAPANASTASIOU  "papanastasiou"
+#define SLUMP_RHEOLOGY_BERCOVIER      "bercovier"
+#define SLUMP_RHEOLOGY_BINGHAM_SIMPLE "bingham_simple"
+
+/* One point: params[] are the model's parameters in declaration order. */
+typedef void (*SlumpViscosityKernel)(const PetscScalar params[], PetscReal gdot, PetscReal p, PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp, PetscReal *yield_stress);
+
+PETSC_EXTERN PetscErrorCode SlumpRheologyCreate(MPI_Comm comm, SlumpRheology *rheo);
+PETSC_EXTERN PetscErrorCode SlumpRheologyDestroy(SlumpRheology *rheo);
+PETSC_EXTERN PetscErrorCode SlumpRheologySetType(SlumpRheology rheo, SlumpRheologyType type);
+PETSC_EXTERN PetscErrorCode SlumpRheologyGetType(SlumpRheology rheo, SlumpRheologyType *type);
+PETSC_EXTERN PetscErrorCode SlumpRheologySetFromOptions(SlumpRheology rheo);
+PETSC_EXTERN PetscErrorCode SlumpRheologyView(SlumpRheology rheo, PetscViewer viewer);
+PETSC_EXTERN PetscErrorCode SlumpRheologyRegister(const char name[], PetscErrorCode (*create)(SlumpRheology));
+PETSC_EXTERN PetscErrorCode SlumpRheologyRegisterAll(void);
+PETSC_EXTERN PetscErrorCode SlumpRheologyListTypes(MPI_Comm comm, char list[], size_t len);
+
+/* Named parameters ("viscosity", "yield_stress", "m", "eps", ...). */
+PETSC_EXTERN PetscErrorCode SlumpRheologySetParameter(SlumpRheology rheo, const char name[], PetscReal value);
+PETSC_EXTERN PetscErrorCode SlumpRheologyGetParameter(SlumpRheology rheo, const char name[], PetscReal *value);
+PETSC_EXTERN PetscErrorCode SlumpRheologyHasParameter(SlumpRheology rheo, const char name[], PetscBool *has);
+/* Check every parameter against its bounds; one clear sentence if invalid. */
+PETSC_EXTERN PetscErrorCode SlumpRheologyCheck(SlumpRheology rheo);
+/* Packed parameters for the pointwise kernels' constants. */
+PETSC_EXTERN PetscErrorCode SlumpRheologyGetConstants(SlumpRheology rheo, PetscInt *n, PetscScalar params[]);
+
+/* Host-side evaluation (tests, diagnostics). */
+PETSC_EXTERN PetscErrorCode SlumpRheologyEvaluate(SlumpRheology rheo, PetscReal gdot, PetscReal p, PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp);
+PETSC_EXTERN PetscErrorCode SlumpRheologyGetYieldStress(SlumpRheology rheo, PetscReal p, PetscReal *tau_y);
+/* Viscosity of the (regularised) unyielded material, ||gdot|| -> 0. */
+PETSC_EXTERN PetscErrorCode SlumpRheologyGetPlugViscosity(SlumpRheology rheo, PetscReal p, PetscReal *eta_plug);
+
+/* The regularisation parameter (if any), for continuation: name, value, and
+   whether larger values are stiffer (m) or softer (eps). */
+PETSC_EXTERN PetscErrorCode SlumpRheologyGetRegularisation(SlumpRheology rheo, const char **name, PetscReal *value, PetscBool *stiffer_when_larger);
+
+/* Pointwise residual/Jacobian kernels of this model (see slumppointwise.h). */
+typedef struct {
+  PetscPointFunc f1_u;        /* tau(u, p) - p I                    */
+  PetscPointJac  g2_up;       /* d f1_u / d p                       */
+  PetscPointJac  g3_uu;       /* d f1_u / d grad u                  */
+  PetscPointFunc eta;         /* effective viscosity (projection)   */
+  PetscPointFunc shear_rate;  /* ||gdot|| (projection)              */
+  PetscPointFunc diss_yield;  /* objective pair, see diagnostics.c  */
+  PetscPointFunc yielded;     /* 1 where ||tau|| > tau_y            */
+} SlumpRheologyPointwise;
+PETSC_EXTERN PetscErrorCode SlumpRheologyGetPointwise(SlumpRheology rheo, SlumpRheologyPointwise *pw);

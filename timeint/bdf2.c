@@ -1,0 +1,129 @@
+/* Fixed-step BDF2 (BDF1 for the first step), each step a KINSOL solve of
+ * F(t_{n+1}, y, alpha y + beta) = 0 with the same residual, Jacobian and
+ * linear solver as IDA: the reference against which adaptivity is measured.
+ * Output times and the arrest time use the quadratic interpolant through
+ * the last three states; the arrest time is located on it by the Illinois
+ * (modified regula falsi) method. */
+#include "timeintimpl.h"
+
+/* Y = Lagrange interpolant at t through (ta, A), (tb, B), (tc, C); A may be NULL (linear). */
+static PetscErrorCode Interpolate(PetscReal t, PetscReal ta, Vec A, PetscReal tb, Vec B, PetscReal tc, Vec C, Vec Y)
+{
+  PetscFunctionBeginUser;
+  if (!A) {
+    const PetscReal s = (t - tb) / (tc - tb);
+    PetscCall(VecAXPBYPCZ(Y, 1.0 - s, s, 0.0, B, C));
+  } else {
+    const PetscReal la = (t - tb) * (t - tc) / ((ta - tb) * (ta - tc));
+    const PetscReal lb = (t - ta) * (t - tc) / ((tb - ta) * (tb - tc));
+    const PetscReal lc = (t - ta) * (t - tb) / ((tc - ta) * (tc - tb));
+    PetscCall(VecAXPBYPCZ(Y, la, lb, 0.0, A, B));
+    PetscCall(VecAXPY(Y, lc, C));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
+{
+  MPI_Comm            comm;
+  SlumpImplicitSolver s;
+  Vec                 Yprev, Yn, beta, Y;
+  PetscInt            N, kout = 1;
+  PetscReal           dt, next_out, gprev = 0.0;
+  PetscBool           have_prev = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
+  N  = (PetscInt)PetscCeilReal((ti->tfinal - ti->t0) / ti->dt - 1e-9);
+  dt = (ti->tfinal - ti->t0) / N;
+  PetscCall(SlumpImplicitSolverCreate(ti->prob, X, &s));
+  PetscCall(VecDuplicate(X, &Yprev));
+  PetscCall(VecDuplicate(X, &Yn));
+  PetscCall(VecDuplicate(X, &beta));
+  PetscCall(VecDuplicate(X, &Y));
+  if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
+  if (ti->arrest_threshold > 0) {
+    PetscCall(SlumpProblemComputeMeanShearRate(ti->prob, ti->t0, X, &gprev));
+    gprev -= ti->arrest_threshold;
+  }
+  next_out = ti->t0 + ti->dtout;
+  for (PetscInt n = 0; n < N; ++n) {
+    const PetscReal tn = ti->t0 + n * dt, tn1 = ti->t0 + (n + 1) * dt;
+    PetscReal       alpha;
+    PetscBool       conv;
+    PetscInt        nits, lits;
+    PetscCall(VecCopy(X, Yn));
+    if (n == 0) {
+      alpha = 1.0 / dt;
+      PetscCall(VecAXPBY(beta, -1.0 / dt, 0.0, Yn));
+    } else {
+      alpha = 1.5 / dt;
+      PetscCall(VecAXPBYPCZ(beta, -2.0 / dt, 0.5 / dt, 0.0, Yn, Yprev));
+    }
+    PetscCall(SlumpImplicitSolverSolve(s, tn1, alpha, beta, X, &conv, &nits, &lits));
+    PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g; reduce -time_dt", (double)tn1);
+    {
+      SlumpStepRecord r = {tn1, dt, n == 0 ? 1 : 2, nits, lits, 0, 0};
+      ti->stats.steps++;
+      ti->stats.h_min = dt;
+      ti->stats.h_max = dt;
+      ti->h_last      = dt;
+      ti->order_last  = r.order;
+      ti->t           = tn1;
+      if (ti->stepmon) PetscCall(ti->stepmon(ti, &r, ti->stepctx));
+    }
+    /* arrest: sign change of g = mean shear rate - threshold on [tn, tn1] */
+    if (ti->arrest_threshold > 0 && ti->t_arrest < 0) {
+      PetscReal g1;
+      PetscCall(SlumpProblemComputeMeanShearRate(ti->prob, tn1, X, &g1));
+      g1 -= ti->arrest_threshold;
+      if (gprev > 0 && g1 <= 0) {
+        PetscReal a = tn, b = tn1, ga = gprev, gb = g1, c = b;
+        PetscInt  side = 0;
+        for (PetscInt it = 0; it < 60 && PetscAbsReal(b - a) > 1e-12 * dt; ++it) {
+          PetscReal gc;
+          c = (a * gb - b * ga) / (gb - ga);
+          PetscCall(Interpolate(c, tn - dt, have_prev ? Yprev : NULL, tn, Yn, tn1, X, Y));
+          PetscCall(SlumpProblemComputeMeanShearRate(ti->prob, c, Y, &gc));
+          gc -= ti->arrest_threshold;
+          if (PetscAbsReal(gc) < 1e-14 * ti->arrest_threshold) break;
+          if ((gc > 0) == (ga > 0)) {
+            a  = c;
+            ga = gc;
+            if (side == -1) gb *= 0.5;
+            side = -1;
+          } else {
+            b  = c;
+            gb = gc;
+            if (side == 1) ga *= 0.5;
+            side = 1;
+          }
+        }
+        ti->t_arrest = c;
+      }
+      gprev = g1;
+    }
+    while (next_out <= tn1 * (1 + 1e-12) && next_out <= ti->tfinal * (1 + 1e-12)) {
+      if (PetscAbsReal(next_out - tn1) <= 1e-9 * dt) PetscCall(VecCopy(X, Y));
+      else PetscCall(Interpolate(next_out, tn - dt, have_prev ? Yprev : NULL, tn, Yn, tn1, X, Y));
+      if (ti->outmon) PetscCall(ti->outmon(ti, next_out, Y, ti->outctx));
+      next_out = ti->t0 + (++kout) * ti->dtout;
+    }
+    PetscCall(VecCopy(Yn, Yprev));
+    have_prev = PETSC_TRUE;
+    if (ti->arrest_stop && ti->t_arrest >= 0) break;
+  }
+  {
+    SlumpStats st;
+    PetscCall(SlumpImplicitSolverGetStats(s, &st));
+    ti->stats.newton_its = st.newton_its;
+    ti->stats.lin_its    = st.lin_its;
+    ti->stats.lin_solves = st.lin_solves;
+    ti->stats.conv_fails = st.conv_fails;
+  }
+  PetscCall(SlumpImplicitSolverDestroy(&s));
+  PetscCall(VecDestroy(&Yprev));
+  PetscCall(VecDestroy(&Yn));
+  PetscCall(VecDestroy(&beta));
+  PetscCall(VecDestroy(&Y));
+  PetscFunctionReturn(0);
+}

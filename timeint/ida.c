@@ -1,0 +1,222 @@
+/* Adaptive BDF (IDA, order <= 2) on the semi-discrete DAE.
+ * Velocity differential, pressure algebraic and out of the error test
+ * (IDASetSuppressAlg). With Taylor-Hood and inertia the DAE has index 2 in
+ * the pressure, so IDACalcIC cannot help: consistent (u'0, p0) come from one
+ * saddle-point solve (SlumpConsistentInitialConditions). Arrest is an IDA
+ * root function on the mean shear rate. */
+#include "timeintimpl.h"
+#include <ida/ida.h>
+
+typedef struct {
+  SlumpIntegrator ti;
+  SlumpProblem    prob;
+  Mat             J;
+} IDAUser;
+
+static int IdaRes(realtype t, N_Vector yy, N_Vector yp, N_Vector rr, void *user)
+{
+  IDAUser *u  = (IDAUser *)user;
+  int      st = SlumpSundialsStatus(SlumpProblemResidual(u->prob, t, N_VGetVector_Petsc(yy), N_VGetVector_Petsc(yp), N_VGetVector_Petsc(rr)));
+  if (st) return st;
+  return SlumpCheckFinite(N_VGetVector_Petsc(rr));
+}
+
+static int IdaJac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix A, void *user, N_Vector t1, N_Vector t2, N_Vector t3)
+{
+  IDAUser *u = (IDAUser *)user;
+  return SlumpSundialsStatus(SlumpProblemJacobian(u->prob, t, N_VGetVector_Petsc(yy), N_VGetVector_Petsc(yp), cj, u->J));
+}
+
+static int IdaRoot(realtype t, N_Vector yy, N_Vector yp, realtype *gout, void *user)
+{
+  IDAUser  *u = (IDAUser *)user;
+  PetscReal mean;
+  if (SlumpProblemComputeMeanShearRate(u->prob, t, N_VGetVector_Petsc(yy), &mean)) return -1;
+  gout[0] = mean - u->ti->arrest_threshold;
+  return 0;
+}
+
+PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
+{
+  Vec                F, W, sub, subw;
+  Mat                J;
+  KSP                ksp;
+  PC                 pc;
+  IS                 isu, isp;
+  KSPConvergedReason reason;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetFieldIS(prob, &isu, &isp));
+  PetscCall(VecGetSubVector(X, isp, &sub));
+  PetscCall(VecZeroEntries(sub));
+  PetscCall(VecRestoreSubVector(X, isp, &sub));
+  PetscCall(VecDuplicate(X, &F));
+  PetscCall(VecDuplicate(X, &W));
+  PetscCall(SlumpProblemResidual(prob, t, X, NULL, F));
+  PetscCall(VecGetSubVector(F, isp, &sub));
+  PetscCall(VecZeroEntries(sub));
+  PetscCall(VecRestoreSubVector(F, isp, &sub));
+  PetscCall(VecScale(F, -1.0));
+  PetscCall(SlumpProblemCreateMatrix(prob, &J));
+  PetscCall(SlumpProblemInitJacobian(prob, t, X, J));
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)X), &ksp));
+  PetscCall(KSPSetOptionsPrefix(ksp, "ic_"));
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+#if defined(PETSC_HAVE_MUMPS)
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+#endif
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(KSPSetOperators(ksp, J, J));
+  PetscCall(KSPSolve(ksp, F, W));
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  PetscCheck(reason > 0, PetscObjectComm((PetscObject)X), PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed (KSP reason %s)", KSPConvergedReasons[reason]);
+  /* X_p = w_p, Xdot = (w_u, 0) */
+  PetscCall(VecGetSubVector(X, isp, &sub));
+  PetscCall(VecGetSubVector(W, isp, &subw));
+  PetscCall(VecCopy(subw, sub));
+  PetscCall(VecZeroEntries(subw));
+  PetscCall(VecRestoreSubVector(W, isp, &subw));
+  PetscCall(VecRestoreSubVector(X, isp, &sub));
+  PetscCall(VecCopy(W, Xdot));
+  PetscCall(KSPDestroy(&ksp));
+  PetscCall(MatDestroy(&J));
+  PetscCall(VecDestroy(&F));
+  PetscCall(VecDestroy(&W));
+  PetscCall(ISDestroy(&isu));
+  PetscCall(ISDestroy(&isp));
+  PetscFunctionReturn(0);
+}
+
+#define IDACHECK(call) PetscCheck((call) >= 0, comm, PETSC_ERR_LIB, "%s failed", #call)
+
+PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
+{
+  MPI_Comm        comm;
+  SUNContext      ctx;
+  Vec             Xdot, Y, idv;
+  N_Vector        yy, yp, yout, nid;
+  SUNMatrix       A;
+  SUNLinearSolver LS;
+  IDAUser         user;
+  void           *mem;
+  realtype        tret;
+  PetscReal       next_out;
+  PetscInt        kout = 1;
+  long int        nni_prev = 0, netf_prev = 0, ncfn_prev = 0;
+  PetscInt        nli_prev = 0;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
+  PetscCheck(!SUNContext_Create((void *)&comm, &ctx), comm, PETSC_ERR_LIB, "SUNContext_Create failed");
+  PetscCall(VecDuplicate(X, &Xdot));
+  PetscCall(VecDuplicate(X, &Y));
+  PetscCall(VecDuplicate(X, &idv));
+  PetscCall(SlumpConsistentInitialConditions(ti->prob, ti->t0, X, Xdot));
+  PetscCall(SlumpProblemGetDifferentialMarker(ti->prob, idv));
+  yy   = N_VMake_Petsc(X, ctx);
+  yp   = N_VMake_Petsc(Xdot, ctx);
+  yout = N_VMake_Petsc(Y, ctx);
+  nid  = N_VMake_Petsc(idv, ctx);
+  user.ti   = ti;
+  user.prob = ti->prob;
+  PetscCall(SlumpProblemCreateMatrix(ti->prob, &user.J));
+  A  = SlumpSUNMatCreate(user.J, ctx);
+  LS = SlumpSUNLinSolCreate(comm, user.J, ctx);
+  PetscCheck(A && LS, comm, PETSC_ERR_LIB, "Cannot create the KSP-backed linear solver");
+  mem = IDACreate(ctx);
+  PetscCheck(mem, comm, PETSC_ERR_LIB, "IDACreate failed");
+  IDACHECK(IDASetErrHandlerFn(mem, SlumpSilentErrHandler, NULL));
+  IDACHECK(IDAInit(mem, IdaRes, ti->t0, yy, yp));
+  IDACHECK(IDASStolerances(mem, ti->rtol, ti->atol));
+  IDACHECK(IDASetUserData(mem, &user));
+  IDACHECK(IDASetLinearSolver(mem, LS, A));
+  IDACHECK(IDASetJacFn(mem, IdaJac));
+  IDACHECK(IDASetMaxOrd(mem, 2));
+  IDACHECK(IDASetId(mem, nid));
+  IDACHECK(IDASetSuppressAlg(mem, SUNTRUE));
+  IDACHECK(IDASetStopTime(mem, ti->tfinal));
+  IDACHECK(IDASetMaxNumSteps(mem, ti->max_steps));
+  if (ti->dt > 0) IDACHECK(IDASetInitStep(mem, ti->dt));
+  if (ti->arrest_threshold > 0) {
+    int dir = -1;
+    IDACHECK(IDARootInit(mem, 1, IdaRoot));
+    IDACHECK(IDASetRootDirection(mem, &dir));
+  }
+  if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
+  next_out = ti->t0 + ti->dtout;
+  for (;;) {
+    int flag = IDASolve(mem, ti->tfinal, &tret, yy, yp, IDA_ONE_STEP);
+    if (flag < 0) {
+      char *name = IDAGetReturnFlagName(flag);
+      ti->t      = tret;
+      PetscCall(PetscStrallocpy(name, &name));
+      SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s (try smaller -time_rtol/-time_dt, a softer regularisation, or -time_max_steps)", (double)tret, name);
+    }
+    ti->t = tret;
+    if (flag == IDA_ROOT_RETURN) {
+      if (ti->t_arrest < 0) ti->t_arrest = tret;
+      PetscCall(PetscInfo(NULL, "arrest root at t = %g\n", (double)tret));
+      if (ti->arrest_stop) {
+        if (ti->outmon) PetscCall(ti->outmon(ti, tret, X, ti->outctx));
+        break;
+      }
+      continue;
+    }
+    {
+      SlumpStepRecord r;
+      long int        nni, netf, ncfn;
+      PetscInt        nsolves, nli;
+      realtype        h;
+      int             q;
+      IDAGetLastStep(mem, &h);
+      IDAGetLastOrder(mem, &q);
+      IDAGetNumNonlinSolvIters(mem, &nni);
+      IDAGetNumErrTestFails(mem, &netf);
+      IDAGetNumNonlinSolvConvFails(mem, &ncfn);
+      PetscCall(SlumpSUNLinSolGetCounts(LS, &nsolves, &nli));
+      r.t              = tret;
+      r.h              = h;
+      r.order          = q;
+      r.newton_its     = (PetscInt)(nni - nni_prev);
+      r.lin_its        = nli - nli_prev;
+      r.err_test_fails = (PetscInt)(netf - netf_prev);
+      r.conv_fails     = (PetscInt)(ncfn - ncfn_prev);
+      nni_prev         = nni;
+      netf_prev        = netf;
+      ncfn_prev        = ncfn;
+      nli_prev         = nli;
+      ti->h_last       = h;
+      ti->order_last   = q;
+      ti->stats.steps++;
+      ti->stats.newton_its     = (PetscInt)nni;
+      ti->stats.lin_its        = nli;
+      ti->stats.lin_solves     = nsolves;
+      ti->stats.err_test_fails = (PetscInt)netf;
+      ti->stats.conv_fails     = (PetscInt)ncfn;
+      ti->stats.h_min          = PetscMin(ti->stats.h_min, h);
+      ti->stats.h_max          = PetscMax(ti->stats.h_max, h);
+      if (ti->stepmon) PetscCall(ti->stepmon(ti, &r, ti->stepctx));
+    }
+    while (next_out <= tret * (1 + 1e-12) + 1e-300 && next_out <= ti->tfinal * (1 + 1e-12)) {
+      PetscReal tout = PetscMin(next_out, ti->tfinal);
+      if (PetscAbsReal(tout - tret) <= 1e-12 * PetscMax(1.0, PetscAbsReal(tret))) PetscCall(VecCopy(X, Y));
+      else IDACHECK(IDAGetDky(mem, tout, 0, yout));
+      if (ti->outmon) PetscCall(ti->outmon(ti, tout, Y, ti->outctx));
+      next_out = ti->t0 + (++kout) * ti->dtout;
+    }
+    if (tret >= ti->tfinal * (1 - 1e-14)) break;
+  }
+  IDAFree(&mem);
+  SUNLinSolFree(LS);
+  SUNMatDestroy(A);
+  N_VDestroy(yy);
+  N_VDestroy(yp);
+  N_VDestroy(yout);
+  N_VDestroy(nid);
+  PetscCall(MatDestroy(&user.J));
+  PetscCall(VecDestroy(&Xdot));
+  PetscCall(VecDestroy(&Y));
+  PetscCall(VecDestroy(&idv));
+  SUNContext_Free(&ctx);
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,232 @@
+/* KINSOL with line search on G(y) = F(t, y, alpha y + beta): steady states
+ * (alpha = 0, beta = 0), and the implicit stage of fixed-step BDF. Exact
+ * Newton: the Jacobian dF/dy + alpha dF/dy' is assembled at every iterate. */
+#include "timeintimpl.h"
+#include "slumprheology.h"
+#include <kinsol/kinsol.h>
+
+struct _n_SlumpImplicitSolver {
+  SlumpProblem    prob;
+  MPI_Comm        comm;
+  SUNContext      sunctx;
+  void           *kmem;
+  Vec             u, scale, ydot, work;
+  N_Vector        nu, nscale;
+  Mat             J;
+  SUNMatrix       A;
+  SUNLinearSolver LS;
+  PetscReal       t, alpha, fnormtol, fnormrtol, maxstep;
+  Vec             beta;
+  PetscInt        maxit;
+  SlumpStats      stats;
+};
+
+static PetscErrorCode FormYdot(SlumpImplicitSolver s, Vec u, Vec *ydot)
+{
+  PetscFunctionBeginUser;
+  *ydot = NULL;
+  if (s->alpha == 0.0 && !s->beta) PetscFunctionReturn(0);
+  if (s->beta) PetscCall(VecWAXPY(s->ydot, s->alpha, u, s->beta));
+  else PetscCall(VecAXPBY(s->ydot, s->alpha, 0.0, u));
+  *ydot = s->ydot;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode KinFunc_Private(SlumpImplicitSolver s, Vec u, Vec f)
+{
+  Vec ydot;
+  PetscFunctionBeginUser;
+  PetscCall(FormYdot(s, u, &ydot));
+  PetscCall(SlumpProblemResidual(s->prob, s->t, u, ydot, f));
+  PetscFunctionReturn(0);
+}
+
+static int KinFunc(N_Vector u, N_Vector f, void *user)
+{
+  SlumpImplicitSolver s  = (SlumpImplicitSolver)user;
+  int                 st = SlumpSundialsStatus(KinFunc_Private(s, N_VGetVector_Petsc(u), N_VGetVector_Petsc(f)));
+  if (st) return st;
+  return SlumpCheckFinite(N_VGetVector_Petsc(f));
+}
+
+static PetscErrorCode KinJac_Private(SlumpImplicitSolver s, Vec u)
+{
+  Vec ydot;
+  PetscFunctionBeginUser;
+  PetscCall(FormYdot(s, u, &ydot));
+  PetscCall(SlumpProblemJacobian(s->prob, s->t, u, ydot, s->alpha, s->J));
+  PetscFunctionReturn(0);
+}
+
+static int KinJac(N_Vector u, N_Vector fu, SUNMatrix J, void *user, N_Vector t1, N_Vector t2)
+{
+  return SlumpSundialsStatus(KinJac_Private((SlumpImplicitSolver)user, N_VGetVector_Petsc(u)));
+}
+
+PetscErrorCode SlumpImplicitSolverCreate(SlumpProblem prob, Vec X, SlumpImplicitSolver *solver)
+{
+  SlumpImplicitSolver s;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&s));
+  s->prob = prob;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &s->comm));
+  s->fnormtol  = 1e-10;
+  s->fnormrtol = 1e-9;
+  s->maxit     = 50;
+  s->maxstep   = 1e12;
+  PetscOptionsBegin(s->comm, NULL, "Newton (KINSOL)", "SlumpImplicitSolver");
+  PetscCall(PetscOptionsReal("-newton_atol", "Absolute tolerance on max |F|", "", s->fnormtol, &s->fnormtol, NULL));
+  PetscCall(PetscOptionsReal("-newton_rtol", "Tolerance on max |F| relative to its initial value", "", s->fnormrtol, &s->fnormrtol, NULL));
+  PetscCall(PetscOptionsReal("-newton_max_step", "Largest scaled Newton step (KINSOL's default is 1 from a zero guess)", "", s->maxstep, &s->maxstep, NULL));
+  PetscCall(PetscOptionsInt("-newton_max_it", "Maximum Newton iterations per solve", "", s->maxit, &s->maxit, NULL));
+  PetscOptionsEnd();
+  PetscCheck(s->fnormtol > 0 && s->fnormrtol >= 0, s->comm, PETSC_ERR_USER_INPUT, "-newton_atol must be positive and -newton_rtol non-negative");
+  PetscCheck(s->maxit > 0, s->comm, PETSC_ERR_USER_INPUT, "-newton_max_it must be a positive integer");
+  PetscCheck(!SUNContext_Create((void *)&s->comm, &s->sunctx), s->comm, PETSC_ERR_LIB, "SUNContext_Create failed");
+  PetscCall(VecDuplicate(X, &s->u));
+  PetscCall(VecDuplicate(X, &s->scale));
+  PetscCall(VecDuplicate(X, &s->ydot));
+  PetscCall(VecDuplicate(X, &s->work));
+  PetscCall(VecSet(s->scale, 1.0));
+  s->nu     = N_VMake_Petsc(s->u, s->sunctx);
+  s->nscale = N_VMake_Petsc(s->scale, s->sunctx);
+  PetscCall(SlumpProblemCreateMatrix(prob, &s->J));
+  s->A  = SlumpSUNMatCreate(s->J, s->sunctx);
+  s->LS = SlumpSUNLinSolCreate(s->comm, s->J, s->sunctx);
+  PetscCheck(s->A && s->LS, s->comm, PETSC_ERR_LIB, "Cannot create the KSP-backed linear solver");
+  s->kmem = KINCreate(s->sunctx);
+  PetscCheck(s->kmem, s->comm, PETSC_ERR_LIB, "KINCreate failed");
+  PetscCheck(!KINInit(s->kmem, KinFunc, s->nu), s->comm, PETSC_ERR_LIB, "KINInit failed");
+  PetscCheck(!KINSetUserData(s->kmem, s), s->comm, PETSC_ERR_LIB, "KINSetUserData failed");
+  PetscCheck(!KINSetLinearSolver(s->kmem, s->LS, s->A), s->comm, PETSC_ERR_LIB, "KINSetLinearSolver failed");
+  PetscCheck(!KINSetJacFn(s->kmem, KinJac), s->comm, PETSC_ERR_LIB, "KINSetJacFn failed");
+  PetscCheck(!KINSetMaxSetupCalls(s->kmem, 1), s->comm, PETSC_ERR_LIB, "KINSetMaxSetupCalls failed");
+  PetscCheck(!KINSetNumMaxIters(s->kmem, s->maxit), s->comm, PETSC_ERR_LIB, "KINSetNumMaxIters failed");
+  PetscCheck(s->maxstep > 0, s->comm, PETSC_ERR_USER_INPUT, "-newton_max_step must be positive");
+  PetscCheck(!KINSetMaxNewtonStep(s->kmem, s->maxstep), s->comm, PETSC_ERR_LIB, "KINSetMaxNewtonStep failed");
+  PetscCheck(!KINSetScaledStepTol(s->kmem, 1e-15), s->comm, PETSC_ERR_LIB, "KINSetScaledStepTol failed");
+  PetscCheck(!KINSetMaxBetaFails(s->kmem, 50), s->comm, PETSC_ERR_LIB, "KINSetMaxBetaFails failed");
+  PetscCheck(!KINSetPrintLevel(s->kmem, 0), s->comm, PETSC_ERR_LIB, "KINSetPrintLevel failed");
+  PetscCheck(!KINSetErrHandlerFn(s->kmem, SlumpSilentErrHandler, NULL), s->comm, PETSC_ERR_LIB, "KINSetErrHandlerFn failed");
+  *solver = s;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpImplicitSolverDestroy(SlumpImplicitSolver *solver)
+{
+  SlumpImplicitSolver s = *solver;
+  PetscFunctionBeginUser;
+  if (!s) PetscFunctionReturn(0);
+  KINFree(&s->kmem);
+  SUNLinSolFree(s->LS);
+  SUNMatDestroy(s->A);
+  N_VDestroy(s->nu);
+  N_VDestroy(s->nscale);
+  PetscCall(MatDestroy(&s->J));
+  PetscCall(VecDestroy(&s->u));
+  PetscCall(VecDestroy(&s->scale));
+  PetscCall(VecDestroy(&s->ydot));
+  PetscCall(VecDestroy(&s->work));
+  SUNContext_Free(&s->sunctx);
+  PetscCall(PetscFree(*solver));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpImplicitSolverSetTolerance(SlumpImplicitSolver s, PetscReal fnormtol)
+{
+  PetscFunctionBeginUser;
+  s->fnormtol = fnormtol;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, PetscReal alpha, Vec beta, Vec X, PetscBool *converged, PetscInt *newton_its, PetscInt *lin_its)
+{
+  long int  nni0 = 0, nni1 = 0;
+  PetscInt  ls0, ls1, li0, li1;
+  PetscReal f0, tol, fnorm;
+  int       flag;
+  PetscFunctionBeginUser;
+  s->t     = t;
+  s->alpha = alpha;
+  s->beta  = beta;
+  PetscCall(VecCopy(X, s->u));
+  PetscCall(KinFunc_Private(s, s->u, s->work));
+  PetscCall(VecNorm(s->work, NORM_INFINITY, &f0));
+  tol = PetscMax(s->fnormtol, s->fnormrtol * f0);
+  PetscCheck(!KINSetFuncNormTol(s->kmem, tol), s->comm, PETSC_ERR_LIB, "KINSetFuncNormTol failed");
+  PetscCall(SlumpSUNLinSolGetCounts(s->LS, &ls0, &li0));
+  KINGetNumNonlinSolvIters(s->kmem, &nni0);
+  flag = KINSol(s->kmem, s->nu, KIN_LINESEARCH, s->nscale, s->nscale);
+  KINGetNumNonlinSolvIters(s->kmem, &nni1);
+  PetscCall(SlumpSUNLinSolGetCounts(s->LS, &ls1, &li1));
+  KINGetFuncNorm(s->kmem, &fnorm);
+  PetscCall(PetscInfo(NULL, "KINSol flag %d (%s), fnorm %g, tol %g\n", flag, KINGetReturnFlagName(flag), (double)fnorm, (double)tol));
+  if (flag == KIN_SUCCESS || flag == KIN_INITIAL_GUESS_OK) *converged = PETSC_TRUE;
+  else if (flag == KIN_STEP_LT_STPTOL) *converged = (fnorm <= 100 * tol) ? PETSC_TRUE : PETSC_FALSE;
+  else *converged = PETSC_FALSE;
+  if (flag == KIN_INITIAL_GUESS_OK) nni1 = nni0;
+  if (*converged) PetscCall(VecCopy(s->u, X));
+  if (newton_its) *newton_its = (PetscInt)(nni1 - nni0);
+  if (lin_its) *lin_its = li1 - li0;
+  s->stats.newton_its += (PetscInt)(nni1 - nni0);
+  s->stats.lin_its += li1 - li0;
+  s->stats.lin_solves += ls1 - ls0;
+  if (!*converged) s->stats.conv_fails++;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *stats)
+{
+  PetscFunctionBeginUser;
+  *stats = s->stats;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
+{
+  SlumpImplicitSolver s;
+  SlumpRheology       rheo;
+  const char         *regname;
+  PetscReal           target, start = 0.0, factor = 10.0, v;
+  PetscBool           larger_stiffer, set;
+  MPI_Comm            comm;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &larger_stiffer));
+  PetscOptionsBegin(comm, NULL, "Steady solve", "SlumpSteadySolve");
+  PetscCall(PetscOptionsReal("-steady_continuation_start", "First value of the regularisation parameter (continuation towards the model's value)", "", start, &start, &set));
+  PetscCall(PetscOptionsReal("-steady_continuation_factor", "Factor between continuation steps (> 1)", "", factor, &factor, NULL));
+  PetscOptionsEnd();
+  PetscCheck(factor > 1.0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_factor must be > 1; got %g", (double)factor);
+  PetscCheck(!set || regname, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_start needs a regularised rheology; this one has no regularisation parameter");
+  PetscCheck(!set || start > 0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_start must be positive; got %g", (double)start);
+  PetscCall(SlumpImplicitSolverCreate(prob, X, &s));
+  v = set ? start : target;
+  for (;;) {
+    PetscBool conv, last;
+    PetscInt  nits, lits;
+    Vec       F;
+    PetscReal fn;
+    if (set) {
+      last = larger_stiffer ? (v >= target * (1 - 1e-12)) : (v <= target * (1 + 1e-12));
+      if (last) v = target;
+      PetscCall(SlumpRheologySetParameter(rheo, regname, v));
+      PetscCall(SlumpProblemUpdateConstants(prob));
+    } else last = PETSC_TRUE;
+    PetscCall(SlumpImplicitSolverSolve(s, 0.0, 0.0, NULL, X, &conv, &nits, &lits));
+    PetscCall(VecDuplicate(X, &F));
+    PetscCall(SlumpProblemResidual(prob, 0.0, X, NULL, F));
+    PetscCall(VecNorm(F, NORM_INFINITY, &fn));
+    PetscCall(VecDestroy(&F));
+    if (regname) PetscCall(PetscPrintf(comm, "steady: %s = %-10.4g Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", regname, (double)v, nits, lits, (double)fn, conv ? "" : "  (not converged)"));
+    else PetscCall(PetscPrintf(comm, "steady: Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", nits, lits, (double)fn, conv ? "" : "  (not converged)"));
+    PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge%s%s; try -steady_continuation_start, -newton_max_it or a softer regularisation", regname ? " at " : "", regname ? regname : "");
+    if (last) break;
+    v = larger_stiffer ? v * factor : v / factor;
+  }
+  PetscCall(SlumpImplicitSolverGetStats(s, stats));
+  PetscCall(SlumpProblemGetCounters(prob, &stats->res_evals, &stats->jac_evals));
+  PetscCall(SlumpImplicitSolverDestroy(&s));
+  PetscFunctionReturn(0);
+}

@@ -1,0 +1,178 @@
+/* SUNDIALS <-> PETSc: a SUNMatrix holding a PETSc Mat, and a direct
+ * SUNLinearSolver solving with a PETSc KSP. The integrator's Jacobian
+ * callback assembles the Mat (DMPlex, shift cj); setup hands it to the KSP
+ * (which refactors), solve runs KSPSolve and checks its converged reason:
+ * a failed linear solve is recoverable, so IDA cuts the step. */
+#include "timeintimpl.h"
+
+int SlumpSundialsStatus(PetscErrorCode ierr)
+{
+  return ierr ? -1 : 0;
+}
+
+void SlumpSilentErrHandler(int code, const char *module, const char *function, char *msg, void *user)
+{
+}
+
+int SlumpCheckFinite(Vec v)
+{
+  PetscReal nrm;
+  if (VecNorm(v, NORM_INFINITY, &nrm)) return -1;
+  return PetscIsInfOrNanReal(nrm) ? 1 : 0;
+}
+
+static SUNMatrix_ID MatGetID_Slump(SUNMatrix A)
+{
+  return SUNMATRIX_CUSTOM;
+}
+static int MatZero_Slump(SUNMatrix A)
+{
+  return 0; /* the assembly zeroes the Mat itself */
+}
+static void MatDestroy_Slump(SUNMatrix A)
+{
+  SUNMatFreeEmpty(A);
+}
+
+SUNMatrix SlumpSUNMatCreate(Mat J, SUNContext ctx)
+{
+  SUNMatrix A = SUNMatNewEmpty(ctx);
+  if (!A) return NULL;
+  A->content      = (void *)J;
+  A->ops->getid   = MatGetID_Slump;
+  A->ops->zero    = MatZero_Slump;
+  A->ops->destroy = MatDestroy_Slump;
+  return A;
+}
+
+typedef struct {
+  KSP      ksp;
+  Mat      J;
+  PetscInt nsolves, nits, last_its;
+  long int last_flag;
+} LSContent;
+
+static SUNLinearSolver_Type LSGetType(SUNLinearSolver S)
+{
+  return SUNLINEARSOLVER_DIRECT;
+}
+static SUNLinearSolver_ID LSGetID(SUNLinearSolver S)
+{
+  return SUNLINEARSOLVER_CUSTOM;
+}
+static int LSInitialize(SUNLinearSolver S)
+{
+  return 0;
+}
+
+static PetscErrorCode LSSetup_Private(LSContent *c)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetOperators(c->ksp, c->J, c->J));
+  PetscCall(KSPSetUp(c->ksp));
+  PetscFunctionReturn(0);
+}
+
+static int LSSetup(SUNLinearSolver S, SUNMatrix A)
+{
+  LSContent *c = (LSContent *)S->content;
+  int        st = SlumpSundialsStatus(LSSetup_Private(c));
+  c->last_flag  = st;
+  return st < 0 ? SUNLS_PACKAGE_FAIL_UNREC : 0;
+}
+
+static PetscErrorCode LSSolve_Private(LSContent *c, Vec x, Vec b, PetscBool *ok)
+{
+  KSPConvergedReason reason;
+  PetscInt           its;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSolve(c->ksp, b, x));
+  PetscCall(KSPGetConvergedReason(c->ksp, &reason));
+  PetscCall(KSPGetIterationNumber(c->ksp, &its));
+  c->last_its = PetscMax(its, 1);
+  c->nits += c->last_its;
+  c->nsolves++;
+  *ok = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+static int LSSolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realtype tol)
+{
+  LSContent *c = (LSContent *)S->content;
+  PetscBool  ok = PETSC_FALSE;
+  int        st = SlumpSundialsStatus(LSSolve_Private(c, N_VGetVector_Petsc(x), N_VGetVector_Petsc(b), &ok));
+  if (st < 0) {
+    c->last_flag = SUNLS_PACKAGE_FAIL_UNREC;
+    return SUNLS_PACKAGE_FAIL_UNREC;
+  }
+  if (!ok || SlumpCheckFinite(N_VGetVector_Petsc(x))) {
+    c->last_flag = SUNLS_PACKAGE_FAIL_REC;
+    return SUNLS_PACKAGE_FAIL_REC;
+  }
+  c->last_flag = 0;
+  return 0;
+}
+
+static int LSNumIters(SUNLinearSolver S)
+{
+  return (int)((LSContent *)S->content)->last_its;
+}
+static sunindextype LSLastFlag(SUNLinearSolver S)
+{
+  return ((LSContent *)S->content)->last_flag;
+}
+static int LSFree(SUNLinearSolver S)
+{
+  if (!S) return 0;
+  if (S->content) {
+    LSContent *c = (LSContent *)S->content;
+    (void)KSPDestroy(&c->ksp);
+    free(c);
+    S->content = NULL;
+  }
+  SUNLinSolFreeEmpty(S);
+  return 0;
+}
+
+SUNLinearSolver SlumpSUNLinSolCreate(MPI_Comm comm, Mat J, SUNContext ctx)
+{
+  SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
+  LSContent      *c = (LSContent *)calloc(1, sizeof(LSContent));
+  PC              pc;
+  if (!S || !c) return NULL;
+  S->content          = c;
+  S->ops->gettype     = LSGetType;
+  S->ops->getid       = LSGetID;
+  S->ops->initialize  = LSInitialize;
+  S->ops->setup       = LSSetup;
+  S->ops->solve       = LSSolve;
+  S->ops->numiters    = LSNumIters;
+  S->ops->lastflag    = LSLastFlag;
+  S->ops->free        = LSFree;
+  c->J                = J;
+  if (KSPCreate(comm, &c->ksp)) return NULL;
+  if (KSPSetType(c->ksp, KSPPREONLY)) return NULL;
+  if (KSPGetPC(c->ksp, &pc)) return NULL;
+  if (PCSetType(pc, PCLU)) return NULL;
+#if defined(PETSC_HAVE_MUMPS)
+  if (PCFactorSetMatSolverType(pc, MATSOLVERMUMPS)) return NULL;
+#endif
+  if (KSPSetFromOptions(c->ksp)) return NULL;
+  return S;
+}
+
+PetscErrorCode SlumpSUNLinSolGetCounts(SUNLinearSolver LS, PetscInt *nsolves, PetscInt *nits)
+{
+  LSContent *c = (LSContent *)LS->content;
+  PetscFunctionBeginUser;
+  if (nsolves) *nsolves = c->nsolves;
+  if (nits) *nits = c->nits;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSUNLinSolGetKSP(SUNLinearSolver LS, KSP *ksp)
+{
+  PetscFunctionBeginUser;
+  *ksp = ((LSContent *)LS->content)->ksp;
+  PetscFunctionReturn(0);
+}

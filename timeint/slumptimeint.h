@@ -1,0 +1,68 @@
+/* slump time integration: the semi-discrete DAE F(t, y, y') = 0 of a
+ * SlumpProblem handed to SUNDIALS.
+ *   ida   adaptive variable-step BDF (IDA), order <= 2, pressure algebraic
+ *         and out of the error test, consistent initial conditions;
+ *   bdf2  fixed-step BDF2 (first step BDF1), each step solved by KINSOL:
+ *         the reference against which adaptivity is measured;
+ *   steady  F(y, 0) = 0 by KINSOL with line search, with continuation in
+ *         the rheology's regularisation parameter.
+ * Linear systems J = dF/dy + cj dF/dy' go to a PETSc KSP (default LU with
+ * MUMPS; every -ksp_/-pc_ option applies). */
+#pragma once
+
+#include "slump.h"
+
+typedef struct _n_SlumpIntegrator *SlumpIntegrator;
+
+typedef enum { SLUMP_INTEGRATOR_IDA, SLUMP_INTEGRATOR_BDF2 } SlumpIntegratorType;
+PETSC_EXTERN const char *const SlumpIntegratorTypes[];
+
+/* Counters, cumulative over a run. */
+typedef struct {
+  PetscInt  steps, res_evals, jac_evals, newton_its, lin_its, lin_solves;
+  PetscInt  err_test_fails, conv_fails;
+  PetscReal h_min, h_max;
+} SlumpStats;
+
+/* One accepted step. */
+typedef struct {
+  PetscReal t, h;
+  PetscInt  order, newton_its, lin_its, err_test_fails, conv_fails;
+} SlumpStepRecord;
+
+typedef PetscErrorCode (*SlumpStepMonitorFn)(SlumpIntegrator, const SlumpStepRecord *, void *);
+typedef PetscErrorCode (*SlumpOutputMonitorFn)(SlumpIntegrator, PetscReal t, Vec X, void *);
+typedef PetscErrorCode (*SlumpEventMonitorFn)(SlumpIntegrator, PetscReal t, PetscInt which, void *);
+
+PETSC_EXTERN PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorDestroy(SlumpIntegrator *ti);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetType(SlumpIntegrator ti, SlumpIntegratorType type);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetType(SlumpIntegrator ti, SlumpIntegratorType *type);
+/* -time_integrator ida|bdf2 -time_final -time_output_dt -time_rtol -time_atol
+   -time_dt (bdf2 step; ida first step) -time_max_steps -arrest_mean_shear_rate -arrest_stop */
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTimes(SlumpIntegrator ti, PetscReal t0, PetscReal tfinal, PetscReal dtout);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTimes(SlumpIntegrator ti, PetscReal *t0, PetscReal *tfinal, PetscReal *dtout);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTolerances(SlumpIntegrator ti, PetscReal rtol, PetscReal atol);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTolerances(SlumpIntegrator ti, PetscReal *rtol, PetscReal *atol);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTimeStep(SlumpIntegrator ti, PetscReal dt);
+/* Root function: mean shear rate minus threshold (threshold <= 0: off). */
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetArrestThreshold(SlumpIntegrator ti, PetscReal threshold, PetscBool stop);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetArrestTime(SlumpIntegrator ti, PetscReal *tarrest);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetStepMonitor(SlumpIntegrator ti, SlumpStepMonitorFn fn, void *ctx);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetOutputMonitor(SlumpIntegrator ti, SlumpOutputMonitorFn fn, void *ctx);
+/* Integrate from t0 (X: initial velocity; on return the state at the end). */
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSolve(SlumpIntegrator ti, Vec X);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetStats(SlumpIntegrator ti, SlumpStats *stats);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTime(SlumpIntegrator ti, PetscReal *t);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetLastStep(SlumpIntegrator ti, PetscReal *h, PetscInt *order);
+
+/* Steady state F(y, 0) = 0 by KINSOL (line search), with continuation in the
+   regularisation parameter: -steady_continuation_start v -steady_continuation_factor f
+   go from v to the model's value in geometric steps. X: initial guess and result. */
+PETSC_EXTERN PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats);
+
+/* Consistent initial conditions for the index-2 Navier-Stokes DAE: given a
+   velocity in X, solve [rho M, B^T; B, 0] (u', p) = (-(A(u) - f), 0) and
+   return X with the pressure set, Xdot = (u', 0). */
+PETSC_EXTERN PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot);

@@ -1,0 +1,47 @@
+/* Private: the SUNDIALS bridge. */
+#pragma once
+
+#include "slumptimeint.h"
+#include <sundials/sundials_context.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+#include <nvector/nvector_petsc.h>
+
+/* A SUNMatrix that only carries a PETSc Mat (assembled by the problem). */
+PETSC_INTERN SUNMatrix       SlumpSUNMatCreate(Mat J, SUNContext ctx);
+/* A direct SUNLinearSolver that solves with a PETSc KSP on that Mat. */
+PETSC_INTERN SUNLinearSolver SlumpSUNLinSolCreate(MPI_Comm comm, Mat J, SUNContext ctx);
+PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetCounts(SUNLinearSolver LS, PetscInt *nsolves, PetscInt *nits);
+PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetKSP(SUNLinearSolver LS, KSP *ksp);
+/* Convert a PETSc error code at a SUNDIALS callback boundary: 0 ok, <0 fatal. */
+PETSC_INTERN int             SlumpSundialsStatus(PetscErrorCode ierr);
+/* SUNDIALS error handler that prints nothing: failures are reported by slump. */
+PETSC_INTERN void SlumpSilentErrHandler(int code, const char *module, const char *function, char *msg, void *user);
+/* Recoverable failure (>0) if a vector holds NaN or Inf. */
+PETSC_INTERN int             SlumpCheckFinite(Vec v);
+
+/* KINSOL on G(y) = F(t, y, alpha y + beta) (beta may be NULL; alpha 0: steady). */
+typedef struct _n_SlumpImplicitSolver *SlumpImplicitSolver;
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverCreate(SlumpProblem prob, Vec X, SlumpImplicitSolver *s);
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverDestroy(SlumpImplicitSolver *s);
+/* Returns converged = PETSC_FALSE (no error) when KINSOL fails. */
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, PetscReal alpha, Vec beta, Vec X, PetscBool *converged, PetscInt *newton_its, PetscInt *lin_its);
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *stats);
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverSetTolerance(SlumpImplicitSolver s, PetscReal fnormtol);
+
+struct _n_SlumpIntegrator {
+  SlumpProblem         prob;
+  SlumpIntegratorType  type;
+  PetscReal            t0, tfinal, dtout, rtol, atol, dt, t, h_last;
+  PetscInt             order_last, max_steps;
+  PetscReal            arrest_threshold, t_arrest;
+  PetscBool            arrest_stop;
+  SlumpStats           stats;
+  SlumpStepMonitorFn   stepmon;
+  void                *stepctx;
+  SlumpOutputMonitorFn outmon;
+  void                *outctx;
+};
+
+PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator, Vec);
+PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator, Vec);
