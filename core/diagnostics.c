@@ -31,19 +31,6 @@ static void FlowRate(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt u
   f[1] = 0.0;
 }
 
-static PetscErrorCode Integrate(SlumpProblem prob, PetscPointFunc obj0, PetscPointFunc obj1, PetscReal out[2])
-{
-  PetscDS     ds;
-  PetscScalar integral[2];
-  PetscFunctionBeginUser;
-  PetscCall(DMGetDS(prob->dmDiag, &ds));
-  PetscCall(PetscDSSetObjective(ds, 0, obj0));
-  PetscCall(PetscDSSetObjective(ds, 1, obj1));
-  PetscCall(DMPlexComputeIntegralFEM(prob->dmDiag, prob->diagX, integral, prob));
-  out[0] = PetscRealPart(integral[0]);
-  out[1] = PetscRealPart(integral[1]);
-  PetscFunctionReturn(0);
-}
 
 /* ||gdot|| of a P2 velocity is the norm of a linear field on each triangle,
    a convex function, so its maximum over a cell sits at a vertex: the
@@ -106,30 +93,33 @@ static PetscErrorCode MaxShearRate(SlumpProblem prob, PetscReal *gmax)
 
 PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean)
 {
-  PetscReal r[2];
+  PetscPointFunc obj[1] = {ShearRate};
+  PetscReal      r;
   PetscFunctionBeginUser;
-  PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
-  PetscCall(Integrate(prob, ShearRate, NULL, r));
-  *mean = r[0] / prob->area;
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 1, obj, &r));
+  *mean = r / prob->area;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d)
 {
   SlumpRheologyPointwise pw;
-  PetscReal              r[2];
+  PetscReal              r[5];
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  {
+    PetscPointFunc obj[5] = {KineticEnergy, ShearRate, ShearRateSquared, pw.diss_yield, pw.yielded};
+    PetscCall(SlumpProblemFillLocal(prob, t, X));
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 5, obj, r));
+  }
+  d->t                = t;
+  d->kinetic_energy   = r[0];
+  d->mean_shear_rate  = r[1] / prob->area;
+  d->l2_shear_rate    = PetscSqrtReal(r[2]);
+  d->dissipation      = r[3];
+  d->yielded_fraction = r[4] / prob->area;
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
-  d->t = t;
-  PetscCall(Integrate(prob, KineticEnergy, ShearRate, r));
-  d->kinetic_energy  = r[0];
-  d->mean_shear_rate = r[1] / prob->area;
-  PetscCall(Integrate(prob, ShearRateSquared, pw.diss_yield, r));
-  d->l2_shear_rate = PetscSqrtReal(r[0]);
-  d->dissipation   = r[1];
-  PetscCall(Integrate(prob, pw.yielded, NULL, r));
-  d->yielded_fraction = r[0] / prob->area;
   PetscCall(MaxShearRate(prob, &d->max_shear_rate));
   d->flow_rate = 0.0;
   if (prob->flowRateLabel[0]) {

@@ -113,9 +113,15 @@ static PetscErrorCode WriteXdmf(SlumpFieldWriter w)
     for (PetscInt f = 0; f < 4; ++f) {
       const PetscInt nc = f == 0 ? dim : 1;
       fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", names[f], nc > 1 ? "Vector" : "Scalar");
-      fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"1 %d %d\" Type=\"HyperSlab\">\n", (int)w->nverts, (int)nc);
-      fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%d 0 0 1 1 1 1 %d %d</DataItem>\n", (int)k, (int)w->nverts, (int)nc);
-      fprintf(fp, "      <DataItem Dimensions=\"%d %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/%s</DataItem>\n", (int)w->n, (int)w->nverts, (int)nc, names[f]);
+      if (nc > 1) {
+        fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d %d\" Type=\"HyperSlab\">\n", (int)w->nverts, (int)nc);
+        fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%d 0 0 1 1 1 1 %d %d</DataItem>\n", (int)k, (int)w->nverts, (int)nc);
+        fprintf(fp, "      <DataItem Dimensions=\"%d %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, (int)nc, names[f]);
+      } else {
+        fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d\" Type=\"HyperSlab\">\n", (int)w->nverts);
+        fprintf(fp, "      <DataItem Dimensions=\"3 2\" Format=\"XML\">%d 0 1 1 1 %d</DataItem>\n", (int)k, (int)w->nverts);
+        fprintf(fp, "      <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, names[f]);
+      }
       fprintf(fp, "     </DataItem>\n    </Attribute>\n");
     }
     fprintf(fp, "   </Grid>\n");

@@ -13,7 +13,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->rho            = 1.0;
   p->velocityDegree = 2;
   p->pressureDegree = 1;
-  p->quadOrder      = 6;
+  p->quadOrder      = 3; /* (3+1)^2 = 16 points: exact to degree 7 */
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
   PetscFunctionReturn(0);
@@ -28,6 +28,8 @@ PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
   PetscCall(VecDestroy(&p->locXdot));
   PetscCall(VecDestroy(&p->locF));
   PetscCall(VecDestroy(&p->diagX));
+  PetscCall(SlumpAssemblyDestroy(&p->assembly));
+  PetscCall(PetscFree2(p->bcIdx, p->bcVal));
   PetscCall(DMDestroy(&p->dmDiag));
   PetscCall(DMDestroy(&p->dm));
   PetscCall(SlumpRheologyDestroy(&p->rheo));
@@ -177,7 +179,13 @@ PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob)
   PetscOptionsBegin(prob->comm, NULL, "Problem", "SlumpProblem");
   PetscCall(PetscOptionsReal("-density", "Density rho", "SlumpProblemSetDensity", rho, &rho, NULL));
   PetscCall(PetscOptionsRangeInt("-velocity_degree", "Polynomial degree of the velocity", "", prob->velocityDegree, &prob->velocityDegree, NULL, 2, 4));
-  PetscCall(PetscOptionsRangeInt("-quadrature_order", "Quadrature order (exact for polynomials of this degree)", "", prob->quadOrder, &prob->quadOrder, NULL, 2, 20));
+  {
+    const char *kinds[] = {"slump", "petsc"};
+    PetscInt    k       = prob->petscAssembly ? 1 : 0;
+    PetscCall(PetscOptionsEList("-assembly", "Cell loop: slump (ours, fast) or petsc (DMPlexTSComputeIFunctionFEM/IJacobianFEM)", "", kinds, 2, kinds[k], &k, NULL));
+    prob->petscAssembly = k == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  PetscCall(PetscOptionsRangeInt("-quadrature_order", "Quadrature: q+1 Gauss-Jacobi points per direction, exact for polynomials of degree 2q+1", "", prob->quadOrder, &prob->quadOrder, NULL, 1, 6));
   PetscOptionsEnd();
   prob->pressureDegree = prob->velocityDegree - 1;
   PetscCall(SlumpProblemSetDensity(prob, rho));
@@ -367,10 +375,44 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
     PetscCall(PetscFree(ids));
   }
   PetscCall(SlumpProblemSetConstantsAll(prob));
+  PetscCall(SlumpAssemblyCreate(prob));
   PetscCall(DMCreateLocalVector(prob->dm, &prob->locX));
   PetscCall(VecDuplicate(prob->locX, &prob->locXdot));
   PetscCall(VecDuplicate(prob->locX, &prob->locF));
   PetscCall(DMCreateGlobalVector(prob->dmDiag, &prob->diagX));
+  /* static boundary values: locate the constrained local entries by inserting
+     into a vector of zeros and one of ones */
+  prob->bcStatic = PETSC_TRUE;
+  for (PetscInt b = 0; b < prob->nbc; ++b)
+    if (prob->bc[b].kind == SLUMP_BC_DIRICHLET && prob->bc[b].g_t) prob->bcStatic = PETSC_FALSE;
+  if (prob->bcStatic) {
+    Vec                z, o;
+    const PetscScalar *az, *ao;
+    PetscInt           n, k = 0;
+    PetscCall(VecDuplicate(prob->locX, &z));
+    PetscCall(VecDuplicate(prob->locX, &o));
+    PetscCall(VecZeroEntries(z));
+    PetscCall(VecSet(o, 1.0));
+    PetscCall(DMPlexInsertBoundaryValues(prob->dm, PETSC_TRUE, z, 0.0, NULL, NULL, NULL));
+    PetscCall(DMPlexInsertBoundaryValues(prob->dm, PETSC_TRUE, o, 0.0, NULL, NULL, NULL));
+    PetscCall(VecGetLocalSize(z, &n));
+    PetscCall(VecGetArrayRead(z, &az));
+    PetscCall(VecGetArrayRead(o, &ao));
+    for (PetscInt i = 0; i < n; ++i)
+      if (az[i] != 0.0 || ao[i] != 1.0) k++;
+    PetscCall(PetscMalloc2(k, &prob->bcIdx, k, &prob->bcVal));
+    k = 0;
+    for (PetscInt i = 0; i < n; ++i)
+      if (az[i] != 0.0 || ao[i] != 1.0) {
+        prob->bcIdx[k]   = i;
+        prob->bcVal[k++] = az[i];
+      }
+    prob->nbcIdx = k;
+    PetscCall(VecRestoreArrayRead(z, &az));
+    PetscCall(VecRestoreArrayRead(o, &ao));
+    PetscCall(VecDestroy(&z));
+    PetscCall(VecDestroy(&o));
+  }
   {
     Vec       tmp;
     PetscInt  n1, n2;
@@ -381,13 +423,9 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
     PetscCheck(n1 == n2, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Local layouts of the solution and diagnostic DMs differ");
   }
   {
-    PetscScalar integral[2];
-    PetscCall(DMGetDS(prob->dmDiag, &ds));
-    PetscCall(PetscDSSetObjective(ds, 0, AreaObjective));
-    PetscCall(PetscDSSetObjective(ds, 1, NULL));
-    PetscCall(VecZeroEntries(prob->diagX));
-    PetscCall(DMPlexComputeIntegralFEM(prob->dmDiag, prob->diagX, integral, NULL));
-    prob->area = PetscRealPart(integral[0]);
+    PetscPointFunc obj[1] = {AreaObjective};
+    PetscCall(VecZeroEntries(prob->locX));
+    PetscCall(SlumpAssembleIntegrals(prob, 0.0, prob->locX, 1, obj, &prob->area));
   }
   prob->setup = PETSC_TRUE;
   PetscFunctionReturn(0);

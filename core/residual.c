@@ -3,15 +3,24 @@
  * pointwise assembly by DMPlex, local -> global. */
 #include "slumpimpl.h"
 
+static PetscErrorCode InsertStaticBC(SlumpProblem prob, Vec loc)
+{
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArray(loc, &a));
+  for (PetscInt k = 0; k < prob->nbcIdx; ++k) a[prob->bcIdx[k]] = prob->bcVal[k];
+  PetscCall(VecRestoreArray(loc, &a));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FillLocal(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
 {
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(prob->locX));
-  PetscCall(DMGlobalToLocal(prob->dm, X, INSERT_VALUES, prob->locX));
-  PetscCall(DMPlexInsertBoundaryValues(prob->dm, PETSC_TRUE, prob->locX, t, NULL, NULL, NULL));
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
   PetscCall(VecZeroEntries(prob->locXdot));
   if (Xdot) PetscCall(DMGlobalToLocal(prob->dm, Xdot, INSERT_VALUES, prob->locXdot));
-  PetscCall(DMPlexInsertTimeDerivativeBoundaryValues(prob->dm, PETSC_TRUE, prob->locXdot, t, NULL, NULL, NULL));
+  /* static conditions have zero time derivative: the zeroed entries stay */
+  if (!prob->bcStatic) PetscCall(DMPlexInsertTimeDerivativeBoundaryValues(prob->dm, PETSC_TRUE, prob->locXdot, t, NULL, NULL, NULL));
   PetscFunctionReturn(0);
 }
 
@@ -20,7 +29,8 @@ PetscErrorCode SlumpProblemResidual(SlumpProblem prob, PetscReal t, Vec X, Vec X
   PetscFunctionBeginUser;
   PetscCall(FillLocal(prob, t, X, Xdot));
   PetscCall(VecZeroEntries(prob->locF));
-  PetscCall(DMPlexTSComputeIFunctionFEM(prob->dm, t, prob->locX, prob->locXdot, prob->locF, prob));
+  if (prob->petscAssembly) PetscCall(DMPlexTSComputeIFunctionFEM(prob->dm, t, prob->locX, prob->locXdot, prob->locF, prob));
+  else PetscCall(SlumpAssembleResidual(prob, t, prob->locX, prob->locXdot, prob->locF));
   PetscCall(VecZeroEntries(F));
   PetscCall(DMLocalToGlobal(prob->dm, prob->locF, ADD_VALUES, F));
   prob->nres++;
@@ -31,7 +41,8 @@ PetscErrorCode SlumpProblemJacobian(SlumpProblem prob, PetscReal t, Vec X, Vec X
 {
   PetscFunctionBeginUser;
   PetscCall(FillLocal(prob, t, X, Xdot));
-  PetscCall(DMPlexTSComputeIJacobianFEM(prob->dm, t, prob->locX, prob->locXdot, shift, J, J, prob));
+  if (prob->petscAssembly) PetscCall(DMPlexTSComputeIJacobianFEM(prob->dm, t, prob->locX, prob->locXdot, shift, J, J, prob));
+  else PetscCall(SlumpAssembleJacobian(prob, t, prob->locX, prob->locXdot, shift, J));
   prob->njac++;
   PetscFunctionReturn(0);
 }
@@ -47,6 +58,16 @@ PetscErrorCode SlumpProblemInitJacobian(SlumpProblem prob, PetscReal t, Vec X, M
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemFillLocal(SlumpProblem prob, PetscReal t, Vec X)
+{
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(prob->locX));
+  PetscCall(DMGlobalToLocal(prob->dm, X, INSERT_VALUES, prob->locX));
+  if (prob->bcStatic) PetscCall(InsertStaticBC(prob, prob->locX));
+  else PetscCall(DMPlexInsertBoundaryValues(prob->dm, PETSC_TRUE, prob->locX, t, NULL, NULL, NULL));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemFillDiagVector(SlumpProblem prob, PetscReal t, Vec X, Vec Xdiag)
 {
   Vec                loc;
@@ -54,9 +75,7 @@ PetscErrorCode SlumpProblemFillDiagVector(SlumpProblem prob, PetscReal t, Vec X,
   PetscScalar       *b;
   PetscInt           n;
   PetscFunctionBeginUser;
-  PetscCall(VecZeroEntries(prob->locX));
-  PetscCall(DMGlobalToLocal(prob->dm, X, INSERT_VALUES, prob->locX));
-  PetscCall(DMPlexInsertBoundaryValues(prob->dm, PETSC_TRUE, prob->locX, t, NULL, NULL, NULL));
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
   PetscCall(DMGetLocalVector(prob->dmDiag, &loc));
   PetscCall(VecGetLocalSize(loc, &n));
   PetscCall(VecGetArrayRead(prob->locX, &a));

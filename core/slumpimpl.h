@@ -7,6 +7,8 @@
 
 #define SLUMP_MAX_BC 16
 
+typedef struct _n_SlumpAssembly *SlumpAssembly;
+
 typedef enum { SLUMP_BC_DIRICHLET, SLUMP_BC_FREESLIP, SLUMP_BC_TRACTION } SlumpBCKind;
 
 typedef struct {
@@ -41,9 +43,24 @@ struct _n_SlumpProblem {
   /* work */
   Vec           locX, locXdot, locF, diagX;
   PetscInt      nres, njac;
+  SlumpAssembly assembly;
+  /* boundary values: when no condition depends on time they are projected
+     once and copied into the local vectors (projection per call is costly) */
+  PetscBool     bcStatic;
+  PetscInt      nbcIdx, *bcIdx;
+  PetscScalar  *bcVal;
+  PetscBool     petscAssembly; /* -assembly petsc: PETSc's DMPlexTSCompute*FEM */
 };
 
 PETSC_INTERN PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem);
+/* assembly.c */
+PETSC_INTERN PetscErrorCode SlumpAssemblyCreate(SlumpProblem);
+PETSC_INTERN PetscErrorCode SlumpAssemblyDestroy(SlumpAssembly *);
+PETSC_INTERN PetscErrorCode SlumpAssembleResidual(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, Vec locF);
+PETSC_INTERN PetscErrorCode SlumpAssembleJacobian(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat J);
+PETSC_INTERN PetscErrorCode SlumpAssembleIntegrals(SlumpProblem, PetscReal t, Vec locX, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
+/* Fill prob->locX with X and the boundary values at t. */
+PETSC_INTERN PetscErrorCode SlumpProblemFillLocal(SlumpProblem, PetscReal t, Vec X);
 /* Local solution with boundary values at time t, copied into dmDiag's global layout. */
 PETSC_INTERN PetscErrorCode SlumpProblemFillDiagVector(SlumpProblem, PetscReal t, Vec X, Vec Xdiag);
 PETSC_INTERN PetscErrorCode SlumpProblemSetPointwise(SlumpProblem, PetscDS ds);

@@ -27,6 +27,14 @@ static int IdaJac(realtype t, realtype cj, N_Vector yy, N_Vector yp, N_Vector rr
   return SlumpSundialsStatus(SlumpProblemJacobian(u->prob, t, N_VGetVector_Petsc(yy), N_VGetVector_Petsc(yp), cj, u->J));
 }
 
+static PetscErrorCode ExactAssemble(void *ctx, PetscReal t, Vec y, Vec yp, PetscReal cj)
+{
+  IDAUser *u = (IDAUser *)ctx;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemJacobian(u->prob, t, y, yp, cj, u->J));
+  PetscFunctionReturn(0);
+}
+
 static int IdaRoot(realtype t, N_Vector yy, N_Vector yp, realtype *gout, void *user)
 {
   IDAUser  *u = (IDAUser *)user;
@@ -132,6 +140,11 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   IDACHECK(IDASetLinearSolver(mem, LS, A));
   IDACHECK(IDASetJacFn(mem, IdaJac));
   IDACHECK(IDASetMaxOrd(mem, 2));
+  IDACHECK(IDASetMaxNonlinIters(mem, (int)ti->max_nonlin_iters));
+  if (ti->exact_newton) {
+    PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, ExactAssemble, &user));
+    IDACHECK(IDASetLinearSolutionScaling(mem, SUNFALSE));
+  }
   IDACHECK(IDASetId(mem, nid));
   IDACHECK(IDASetSuppressAlg(mem, SUNTRUE));
   IDACHECK(IDASetStopTime(mem, ti->tfinal));

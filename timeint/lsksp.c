@@ -4,6 +4,7 @@
  * (which refactors), solve runs KSPSolve and checks its converged reason:
  * a failed linear solve is recoverable, so IDA cuts the step. */
 #include "timeintimpl.h"
+#include <ida/ida.h>
 
 int SlumpSundialsStatus(PetscErrorCode ierr)
 {
@@ -46,10 +47,13 @@ SUNMatrix SlumpSUNMatCreate(Mat J, SUNContext ctx)
 }
 
 typedef struct {
-  KSP      ksp;
-  Mat      J;
-  PetscInt nsolves, nits, last_its;
-  long int last_flag;
+  KSP               ksp;
+  Mat               J;
+  PetscInt          nsolves, nits, last_its;
+  long int          last_flag;
+  void             *ida_mem;   /* exact Newton: re-assemble at IDA's iterate */
+  SlumpLSAssembleFn assemble;
+  void             *actx;
 } LSContent;
 
 static SUNLinearSolver_Type LSGetType(SUNLinearSolver S)
@@ -96,11 +100,25 @@ static PetscErrorCode LSSolve_Private(LSContent *c, Vec x, Vec b, PetscBool *ok)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode Reassemble_Private(LSContent *c)
+{
+  realtype tcur, cj;
+  N_Vector yypred, yppred, yy, yp, res;
+  void    *ud;
+  PetscFunctionBeginUser;
+  PetscCheck(!IDAGetNonlinearSystemData(c->ida_mem, &tcur, &yypred, &yppred, &yy, &yp, &res, &cj, &ud), PETSC_COMM_SELF, PETSC_ERR_LIB, "IDAGetNonlinearSystemData failed");
+  PetscCall(c->assemble(c->actx, tcur, N_VGetVector_Petsc(yy), N_VGetVector_Petsc(yp), cj));
+  PetscCall(LSSetup_Private(c));
+  PetscFunctionReturn(0);
+}
+
 static int LSSolve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, realtype tol)
 {
   LSContent *c = (LSContent *)S->content;
   PetscBool  ok = PETSC_FALSE;
-  int        st = SlumpSundialsStatus(LSSolve_Private(c, N_VGetVector_Petsc(x), N_VGetVector_Petsc(b), &ok));
+  int        st;
+  if (c->assemble && SlumpSundialsStatus(Reassemble_Private(c))) return SUNLS_PACKAGE_FAIL_UNREC;
+  st = SlumpSundialsStatus(LSSolve_Private(c, N_VGetVector_Petsc(x), N_VGetVector_Petsc(b), &ok));
   if (st < 0) {
     c->last_flag = SUNLS_PACKAGE_FAIL_UNREC;
     return SUNLS_PACKAGE_FAIL_UNREC;
@@ -174,5 +192,15 @@ PetscErrorCode SlumpSUNLinSolGetKSP(SUNLinearSolver LS, KSP *ksp)
 {
   PetscFunctionBeginUser;
   *ksp = ((LSContent *)LS->content)->ksp;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSUNLinSolSetExactNewton(SUNLinearSolver LS, void *ida_mem, SlumpLSAssembleFn fn, void *ctx)
+{
+  LSContent *c = (LSContent *)LS->content;
+  PetscFunctionBeginUser;
+  c->ida_mem  = ida_mem;
+  c->assemble = fn;
+  c->actx     = ctx;
   PetscFunctionReturn(0);
 }

@@ -13,6 +13,10 @@ PETSC_INTERN SUNMatrix       SlumpSUNMatCreate(Mat J, SUNContext ctx);
 PETSC_INTERN SUNLinearSolver SlumpSUNLinSolCreate(MPI_Comm comm, Mat J, SUNContext ctx);
 PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetCounts(SUNLinearSolver LS, PetscInt *nsolves, PetscInt *nits);
 PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetKSP(SUNLinearSolver LS, KSP *ksp);
+/* Exact Newton inside IDA: before each solve, re-assemble J at IDA's current
+   iterate (IDAGetNonlinearSystemData) with the current cj. */
+typedef PetscErrorCode (*SlumpLSAssembleFn)(void *ctx, PetscReal t, Vec y, Vec yp, PetscReal cj);
+PETSC_INTERN PetscErrorCode  SlumpSUNLinSolSetExactNewton(SUNLinearSolver LS, void *ida_mem, SlumpLSAssembleFn fn, void *ctx);
 /* Convert a PETSc error code at a SUNDIALS callback boundary: 0 ok, <0 fatal. */
 PETSC_INTERN int             SlumpSundialsStatus(PetscErrorCode ierr);
 /* SUNDIALS error handler that prints nothing: failures are reported by slump. */
@@ -33,7 +37,8 @@ struct _n_SlumpIntegrator {
   SlumpProblem         prob;
   SlumpIntegratorType  type;
   PetscReal            t0, tfinal, dtout, rtol, atol, dt, t, h_last;
-  PetscInt             order_last, max_steps;
+  PetscInt             order_last, max_steps, max_nonlin_iters;
+  PetscBool            exact_newton;
   PetscReal            arrest_threshold, t_arrest;
   PetscBool            arrest_stop;
   SlumpStats           stats;
