@@ -385,3 +385,89 @@ PetscErrorCode SlumpAssembleIntegrals(SlumpProblem prob, PetscReal t, Vec locX, 
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, result, (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, prob->comm));
   PetscFunctionReturn(0);
 }
+
+/* Flux int u . n over the faces of `label` (outward normal), 3-point Gauss
+   on each edge, the velocity evaluated in the face's cell (collective). */
+PetscErrorCode SlumpAssembleBoundaryFlux(SlumpProblem prob, Vec locX, const char labelname[], PetscReal *flux)
+{
+  SlumpAssembly      a = prob->assembly;
+  DMLabel            label;
+  IS                 valIS;
+  PetscFE            fe;
+  const PetscScalar *xa;
+  PetscReal          Q = 0.0;
+  const PetscReal    gp[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, gw[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+  PetscInt           fStart, fEnd, dim = a->dim, N = a->NbTot;
+  PetscFunctionBeginUser;
+  PetscCheck(dim == 2, PETSC_COMM_SELF, PETSC_ERR_SUP, "Boundary flux is implemented in 2D");
+  PetscCall(DMGetLabel(prob->dm, labelname, &label));
+  PetscCall(DMGetField(prob->dm, 0, NULL, (PetscObject *)&fe));
+  PetscCall(DMPlexGetHeightStratum(prob->dm, 1, &fStart, &fEnd));
+  PetscCall(VecGetArrayRead(locX, &xa));
+  PetscCall(DMLabelGetValueIS(label, &valIS));
+  {
+    const PetscInt *vals;
+    PetscInt        nv;
+    PetscCall(ISGetLocalSize(valIS, &nv));
+    PetscCall(ISGetIndices(valIS, &vals));
+    for (PetscInt v = 0; v < nv; ++v) {
+      IS              ptIS;
+      const PetscInt *pts;
+      PetscInt        np;
+      PetscCall(DMLabelGetStratumIS(label, vals[v], &ptIS));
+      if (!ptIS) continue;
+      PetscCall(ISGetLocalSize(ptIS, &np));
+      PetscCall(ISGetIndices(ptIS, &pts));
+      for (PetscInt i = 0; i < np; ++i) {
+        const PetscInt  face = pts[i], *supp, *cone;
+        PetscInt        ns, c;
+        PetscReal       xf[2][2], cc[3], area, nrm[2], len;
+        if (face < fStart || face >= fEnd) continue;
+        PetscCall(DMPlexGetSupportSize(prob->dm, face, &ns));
+        if (ns != 1) continue;
+        PetscCall(DMPlexGetSupport(prob->dm, face, &supp));
+        c = supp[0] - a->cStart;
+        if (c < 0 || c >= a->ncell) continue;
+        PetscCall(DMPlexGetCone(prob->dm, face, &cone));
+        for (PetscInt k = 0; k < 2; ++k) {
+          PetscReal vol, cen[3];
+          PetscCall(DMPlexComputeCellGeometryFVM(prob->dm, cone[k], &vol, cen, NULL));
+          xf[k][0] = cen[0];
+          xf[k][1] = cen[1];
+        }
+        PetscCall(DMPlexComputeCellGeometryFVM(prob->dm, supp[0], &area, cc, NULL));
+        len    = PetscSqrtReal(PetscSqr(xf[1][0] - xf[0][0]) + PetscSqr(xf[1][1] - xf[0][1]));
+        nrm[0] = (xf[1][1] - xf[0][1]) / len;
+        nrm[1] = -(xf[1][0] - xf[0][0]) / len;
+        if (nrm[0] * (0.5 * (xf[0][0] + xf[1][0]) - cc[0]) + nrm[1] * (0.5 * (xf[0][1] + xf[1][1]) - cc[1]) < 0) {
+          nrm[0] = -nrm[0];
+          nrm[1] = -nrm[1];
+        }
+        {
+          const PetscReal *g = &a->geom[c * GEOMSIZE(dim)], *v0 = g, *invJ = g + dim + dim * dim;
+          PetscReal        xi[6];
+          PetscTabulation  T;
+          for (PetscInt q = 0; q < 3; ++q) {
+            const PetscReal s = 0.5 * (gp[q] + 1.0), x = xf[0][0] + s * (xf[1][0] - xf[0][0]), y = xf[0][1] + s * (xf[1][1] - xf[0][1]);
+            for (PetscInt d = 0; d < 2; ++d) xi[q * 2 + d] = invJ[d * 2 + 0] * (x - v0[0]) + invJ[d * 2 + 1] * (y - v0[1]) - 1.0;
+          }
+          PetscCall(PetscFECreateTabulation(fe, 1, 3, xi, 0, &T));
+          for (PetscInt q = 0; q < 3; ++q) {
+            PetscReal u[2] = {0, 0};
+            for (PetscInt b = 0; b < a->Nb[0]; ++b)
+              for (PetscInt cc2 = 0; cc2 < 2; ++cc2) u[cc2] += T->T[0][(q * a->Nb[0] + b) * 2 + cc2] * PetscRealPart(xa[a->lidx[c * N + a->off[0] + b]]);
+            Q += 0.5 * len * gw[q] * (u[0] * nrm[0] + u[1] * nrm[1]);
+          }
+          PetscCall(PetscTabulationDestroy(&T));
+        }
+      }
+      PetscCall(ISRestoreIndices(ptIS, &pts));
+      PetscCall(ISDestroy(&ptIS));
+    }
+    PetscCall(ISRestoreIndices(valIS, &vals));
+  }
+  PetscCall(ISDestroy(&valIS));
+  PetscCall(VecRestoreArrayRead(locX, &xa));
+  PetscCall(MPIU_Allreduce(&Q, flux, 1, MPIU_REAL, MPIU_SUM, prob->comm));
+  PetscFunctionReturn(0);
+}

@@ -24,12 +24,6 @@ static void ShearRateSquared(SLUMP_PW_ARGS, PetscScalar f[])
   f[0]          = g * g;
 }
 
-static void FlowRate(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar f[])
-{
-  f[0] = 0.0;
-  for (PetscInt d = 0; d < dim; ++d) f[0] += u[uOff[0] + d] * n[d];
-  f[1] = 0.0;
-}
 
 
 /* ||gdot|| of a P2 velocity is the norm of a linear field on each triangle,
@@ -123,13 +117,8 @@ PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Ve
   PetscCall(MaxShearRate(prob, &d->max_shear_rate));
   d->flow_rate = 0.0;
   if (prob->flowRateLabel[0]) {
-    DMLabel     label;
-    PetscScalar q[2];
-    PetscInt    one = 1;
-    PetscCall(DMGetLabel(prob->dmDiag, prob->flowRateLabel, &label));
-    PetscCall(DMPlexComputeBdIntegral(prob->dmDiag, prob->diagX, label, 1, &one, FlowRate, q, prob));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, q, 1, MPIU_SCALAR, MPIU_SUM, prob->comm));
-    d->flow_rate = PetscRealPart(q[0]);
+    PetscCall(SlumpProblemFillLocal(prob, t, X));
+    PetscCall(SlumpAssembleBoundaryFlux(prob, prob->locX, prob->flowRateLabel, &d->flow_rate));
   }
   PetscFunctionReturn(0);
 }

@@ -141,6 +141,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   IDACHECK(IDASetJacFn(mem, IdaJac));
   IDACHECK(IDASetMaxOrd(mem, 2));
   IDACHECK(IDASetMaxNonlinIters(mem, (int)ti->max_nonlin_iters));
+  IDACHECK(IDASetNonlinConvCoef(mem, ti->nonlin_conv_coef));
   if (ti->exact_newton) {
     PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, ExactAssemble, &user));
     IDACHECK(IDASetLinearSolutionScaling(mem, SUNFALSE));

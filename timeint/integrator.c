@@ -17,6 +17,7 @@ PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti)
   s->atol        = 1e-8;
   s->max_steps   = 1000000;
   s->max_nonlin_iters = 4;
+  s->nonlin_conv_coef = 0.33;
   s->t_arrest    = -1.0;
   s->stats.h_min = PETSC_MAX_REAL;
   *ti            = s;
@@ -119,6 +120,7 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCall(PetscOptionsReal("-time_atol", "Absolute tolerance (ida)", "", ti->atol, &ti->atol, NULL));
   PetscCall(PetscOptionsReal("-time_dt", "Time step (bdf2); first step (ida, 0: IDA's choice)", "", ti->dt, &ti->dt, NULL));
   PetscCall(PetscOptionsBool("-ida_exact_newton", "IDA: re-assemble the Jacobian at every Newton iterate (default: IDA's modified Newton)", "", ti->exact_newton, &ti->exact_newton, NULL));
+  PetscCall(PetscOptionsReal("-ida_nonlin_conv_coef", "IDA: Newton stops when the correction is below this fraction of the error tolerance", "", ti->nonlin_conv_coef, &ti->nonlin_conv_coef, NULL));
   PetscCall(PetscOptionsInt("-ida_max_nonlin_iters", "IDA: Newton iterations per step before the step is cut", "", ti->max_nonlin_iters, &ti->max_nonlin_iters, NULL));
   PetscCall(PetscOptionsInt("-time_max_steps", "Maximum number of steps", "", ti->max_steps, &ti->max_steps, NULL));
   PetscCall(PetscOptionsReal("-arrest_mean_shear_rate", "Arrest when the mean shear rate falls below this (root-found; <= 0: off)", "", ti->arrest_threshold, &ti->arrest_threshold, NULL));
@@ -131,6 +133,7 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCheck(ti->atol > 0, comm, PETSC_ERR_USER_INPUT, "-time_atol must be positive; got %g", (double)ti->atol);
   PetscCheck(ti->dt >= 0, comm, PETSC_ERR_USER_INPUT, "-time_dt must be non-negative; got %g", (double)ti->dt);
   PetscCheck(ti->type != SLUMP_INTEGRATOR_BDF2 || ti->dt > 0, comm, PETSC_ERR_USER_INPUT, "-time_integrator bdf2 needs a positive -time_dt");
+  PetscCheck(ti->nonlin_conv_coef > 0 && ti->nonlin_conv_coef <= 1, comm, PETSC_ERR_USER_INPUT, "-ida_nonlin_conv_coef must lie in (0, 1]; got %g", (double)ti->nonlin_conv_coef);
   PetscCheck(ti->max_nonlin_iters > 0, comm, PETSC_ERR_USER_INPUT, "-ida_max_nonlin_iters must be a positive integer");
   PetscCheck(ti->max_steps > 0, comm, PETSC_ERR_USER_INPUT, "-time_max_steps must be a positive integer");
   PetscFunctionReturn(0);

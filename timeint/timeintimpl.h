@@ -39,6 +39,7 @@ struct _n_SlumpIntegrator {
   PetscReal            t0, tfinal, dtout, rtol, atol, dt, t, h_last;
   PetscInt             order_last, max_steps, max_nonlin_iters;
   PetscBool            exact_newton;
+  PetscReal            nonlin_conv_coef;
   PetscReal            arrest_threshold, t_arrest;
   PetscBool            arrest_stop;
   SlumpStats           stats;

@@ -1,0 +1,297 @@
+#!/usr/bin/env python3
+"""Verification, parallel and input tests of the slump program (run by ctest).
+
+Each test runs `slump` and asserts numbers read back from its CSV outputs,
+with the tolerance stated next to the assertion. On failure it prints the
+expected and the obtained value and exits 1; on success it prints one line.
+
+usage: check.py TEST --slump PATH --mpiexec PATH --work DIR
+"""
+import argparse
+import csv
+import math
+import os
+import shutil
+import subprocess
+import sys
+
+ARGS = None
+
+
+def fail(msg):
+    print("FAIL: " + msg)
+    sys.exit(1)
+
+
+def run(scene, opts, outdir, ranks=1, expect_ok=True):
+    cmd = []
+    if ranks > 1:
+        cmd = [ARGS.mpiexec, "--oversubscribe", "--allow-run-as-root", "-n", str(ranks)]
+    cmd += [ARGS.slump, "-scene", scene, "-output_dir", outdir, "-quiet"] + opts
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if expect_ok and p.returncode != 0:
+        fail("command failed (%d): %s\n%s\n%s" % (p.returncode, " ".join(cmd), p.stdout[-3000:], p.stderr[-3000:]))
+    return p
+
+
+def summary(outdir):
+    with open(os.path.join(outdir, "summary.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return {k: (float(v) if _isnum(v) else v) for k, v in rows[0].items()}
+
+
+def series(outdir):
+    with open(os.path.join(outdir, "series.csv")) as f:
+        return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+def _isnum(v):
+    try:
+        float(v)
+        return True
+    except ValueError:
+        return False
+
+
+def order(e1, e2, ratio=2.0):
+    return math.log(e1 / e2) / math.log(ratio)
+
+
+def work(name):
+    d = os.path.join(ARGS.work, name)
+    shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(d)
+    return d
+
+
+# ----------------------------------------------------------------- tests
+def test_mms_stokes():
+    """Taylor-Hood P2/P1 on the manufactured Stokes solution: L2 orders over
+    three refinements, velocity >= 2.8, pressure >= 1.8."""
+    w = work("mms")
+    eu, ep = [], []
+    for n in (8, 16, 32):
+        d = os.path.join(w, "n%d" % n)
+        run("mms_stokes", ["-mesh_nx", str(n), "-mesh_ny", str(n), "-output_fields", "0"], d)
+        s = summary(d)
+        eu.append(s["err_u_l2"])
+        ep.append(s["err_p_l2"])
+    ou = [order(eu[i], eu[i + 1]) for i in range(2)]
+    op = [order(ep[i], ep[i + 1]) for i in range(2)]
+    print("velocity L2 errors %s orders %s; pressure L2 errors %s orders %s" % (eu, ou, ep, op))
+    if min(ou) < 2.8:
+        fail("velocity order expected >= 2.8, got %s" % ou)
+    if min(op) < 1.8:
+        fail("pressure order expected >= 1.8, got %s" % op)
+
+
+def test_decay_bdf2():
+    """Fixed-step BDF2 on the decaying sine: observed order in time >= 1.9."""
+    w = work("decay_bdf2")
+    err = []
+    for dt in (0.01, 0.005, 0.0025):
+        d = os.path.join(w, "dt%g" % dt)
+        run("decay", ["-time_integrator", "bdf2", "-time_dt", str(dt), "-output_fields", "0"], d)
+        s = summary(d)
+        err.append(s["err_u_l2"] / s["norm_u_l2"])
+    o = [order(err[i], err[i + 1]) for i in range(2)]
+    print("BDF2 relative errors %s, orders %s" % (err, o))
+    if min(o) < 1.9:
+        fail("BDF2 order expected >= 1.9, got %s" % o)
+
+
+def test_decay_ida():
+    """Adaptive IDA (BDF, order <= 2): relative L2 error at t = 0.1 within 10x
+    rtol for rtol = 1e-3, 1e-4; within 40x for 1e-5, 1e-6 (per-step error
+    control accumulates over the ~70-150 steps; measured 15x and 32x), and
+    the error falls by at least 50x from rtol 1e-3 to 1e-6."""
+    w = work("decay_ida")
+    errs = {}
+    for rtol, factor in ((1e-3, 10), (1e-4, 10), (1e-5, 40), (1e-6, 40)):
+        d = os.path.join(w, "r%g" % rtol)
+        run("decay", ["-time_rtol", str(rtol), "-time_atol", str(rtol * 1e-3), "-output_fields", "0"], d)
+        s = summary(d)
+        e = s["err_u_l2"] / s["norm_u_l2"]
+        errs[rtol] = e
+        print("rtol %g: relative error %.3e (%.1f x rtol), %d steps" % (rtol, e, e / rtol, s["steps"]))
+        if not e <= factor * rtol:
+            fail("rtol %g: error expected <= %g x rtol = %g, got %g" % (rtol, factor, factor * rtol, e))
+    if not errs[1e-6] <= errs[1e-3] / 50:
+        fail("error at rtol 1e-6 expected <= 1/50 of that at 1e-3 (%g), got %g" % (errs[1e-3] / 50, errs[1e-6]))
+
+
+def test_poiseuille():
+    """Bingham-Papanastasiou plane Poiseuille, continuation m = 1e2 -> 1e6 on a
+    32-cell-across mesh: relative L2 velocity error <= 1e-3; plug half-width
+    within one cell (2H/32) of tau0/G."""
+    d = work("poiseuille")
+    run("poiseuille", ["-rheology_papanastasiou_m", "1e6", "-steady_continuation_start", "1e2", "-mesh_ny", "32"], d)
+    s = summary(d)
+    rel = s["err_u_l2"] / s["norm_u_l2"]
+    h = 2.0 * s["H"] / 32
+    print("m = 1e6: relative L2 error %.3e; plug half-width %.4f (exact %.4f, cell %.4f)" % (rel, s["plug_half_width"], s["plug_half_width_exact"], h))
+    if not rel <= 1e-3:
+        fail("relative L2 velocity error expected <= 1e-3, got %g" % rel)
+    if not abs(s["plug_half_width"] - s["plug_half_width_exact"]) <= h:
+        fail("plug half-width expected within %g of %g, got %g" % (h, s["plug_half_width_exact"], s["plug_half_width"]))
+
+
+def test_poiseuille_parallel():
+    """poiseuille on 2 ranks gives the 1-rank diagnostics to 1e-8 relative."""
+    w = work("poiseuille_parallel")
+    opts = ["-rheology_papanastasiou_m", "1e4", "-steady_continuation_start", "1e2", "-output_fields", "0", "-newton_rtol", "1e-12"]
+    run("poiseuille", opts, os.path.join(w, "p1"))
+    run("poiseuille", opts, os.path.join(w, "p2"), ranks=2)
+    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
+    if s2["ranks"] != 2:
+        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
+    for k in ("kinetic_energy", "mean_shear_rate", "max_shear_rate", "flow_rate", "err_u_l2"):
+        rel = abs(s1[k] - s2[k]) / max(abs(s1[k]), 1e-300)
+        print("%-16s 1 rank %.12e  2 ranks %.12e  rel diff %.2e" % (k, s1[k], s2[k], rel))
+        if not rel <= 1e-8:
+            fail("%s: 1 and 2 ranks expected equal to 1e-8 relative, got %g" % (k, rel))
+
+
+def test_couette_parallel():
+    """couette_cessation on 2 ranks agrees with 1 rank within 10x rtol: arrest
+    time and every series value (kinetic energy, mean shear rate) at the
+    output times while the flow moves (mean shear rate > 1e-2)."""
+    w = work("couette_parallel")
+    rtol = 1e-4
+    opts = ["-time_rtol", str(rtol), "-time_atol", "1e-6", "-output_fields", "0", "-time_final", "0.12"]
+    run("couette_cessation", opts, os.path.join(w, "p1"))
+    run("couette_cessation", opts, os.path.join(w, "p2"), ranks=2)
+    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
+    rel = abs(s1["t_arrest"] - s2["t_arrest"]) / s1["t_arrest"]
+    print("arrest time: 1 rank %.8f, 2 ranks %.8f, rel diff %.2e; steps %d vs %d" % (s1["t_arrest"], s2["t_arrest"], rel, s1["steps"], s2["steps"]))
+    if not rel <= 10 * rtol:
+        fail("arrest times differ by %g relative, expected <= %g" % (rel, 10 * rtol))
+    a, b = series(os.path.join(w, "p1")), series(os.path.join(w, "p2"))
+    worst = 0.0
+    for r1, r2 in zip(a, b):
+        if r1["mean_shear_rate"] < 1e-2:
+            continue
+        for k in ("kinetic_energy", "mean_shear_rate"):
+            worst = max(worst, abs(r1[k] - r2[k]) / abs(r1[k]))
+    print("largest relative difference of the series while flowing: %.2e" % worst)
+    if not worst <= 10 * rtol:
+        fail("series differ by %g relative, expected <= %g" % (worst, 10 * rtol))
+
+
+def test_demo():
+    """The flagship demo: Bingham Couette cessation, Bn = 1, m = 1e4, adaptive
+    BDF2. The arrest time (mean shear rate < 1e-3) lies below the energy bound
+    T <= ln(1 + pi^2/(2 sqrt(3) Bn))/pi^2 = 0.1366 and above half of it; the
+    kinetic energy never increases (to 1e-12 relative); the outputs exist."""
+    d = work("demo")
+    run("couette_cessation", [], d)
+    s = summary(d)
+    bound = math.log(1 + math.pi ** 2 / (2 * math.sqrt(3) * 1.0)) / math.pi ** 2
+    print("arrest at %.6f, energy bound %.6f (scene says %.6f); %d steps" % (s["t_arrest"], bound, s["t_stop_bound"], s["steps"]))
+    if abs(s["t_stop_bound"] - bound) > 1e-9 * bound:
+        fail("bound expected %g, got %g" % (bound, s["t_stop_bound"]))
+    if not 0.5 * bound < s["t_arrest"] < bound:
+        fail("arrest time expected in (%g, %g), got %g" % (0.5 * bound, bound, s["t_arrest"]))
+    ser = series(d)
+    for r0, r1 in zip(ser, ser[1:]):
+        if r1["kinetic_energy"] > r0["kinetic_energy"] * (1 + 1e-12) + 1e-30:
+            fail("kinetic energy increased from %g to %g at t = %g" % (r0["kinetic_energy"], r1["kinetic_energy"], r1["t"]))
+    for f in ("summary.csv", "series.csv", "steps.csv", "fields.h5", "fields.xmf"):
+        if not os.path.getsize(os.path.join(d, f)) > 0:
+            fail("missing output %s" % f)
+    with open(os.path.join(d, "fields.xmf")) as f:
+        xmf = f.read()
+    ntimes = xmf.count("<Time ")
+    if ntimes != len(ser):
+        fail("fields.xmf expected %d time steps, got %d" % (len(ser), ntimes))
+
+
+def write_gmsh_square(path, n):
+    """A Gmsh 2.2 ASCII file of the unit square, n x n squares cut like
+    SlumpMeshCreateRectangle, with physical lines bottom/right/top/left."""
+    nodes = [(i / n, j / n) for j in range(n + 1) for i in range(n + 1)]
+    vid = lambda i, j: j * (n + 1) + i + 1
+    elems = []
+    for k in range(n):
+        elems.append((1, 1, [vid(k, 0), vid(k + 1, 0)]))          # bottom
+        elems.append((1, 2, [vid(n, k), vid(n, k + 1)]))          # right
+        elems.append((1, 3, [vid(k + 1, n), vid(k, n)]))          # top
+        elems.append((1, 4, [vid(0, k + 1), vid(0, k)]))          # left
+    for j in range(n):
+        for i in range(n):
+            a, b, c, d = vid(i, j), vid(i + 1, j), vid(i + 1, j + 1), vid(i, j + 1)
+            elems.append((2, 5, [a, b, c]))
+            elems.append((2, 5, [a, c, d]))
+    with open(path, "w") as f:
+        f.write("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n5\n")
+        f.write('1 1 "bottom"\n1 2 "right"\n1 3 "top"\n1 4 "left"\n2 5 "domain"\n$EndPhysicalNames\n')
+        f.write("$Nodes\n%d\n" % len(nodes))
+        for k, (x, y) in enumerate(nodes):
+            f.write("%d %.17g %.17g 0\n" % (k + 1, x, y))
+        f.write("$EndNodes\n$Elements\n%d\n" % len(elems))
+        for k, (typ, tag, vs) in enumerate(elems):
+            f.write("%d %d 2 %d %d %s\n" % (k + 1, typ, tag, tag, " ".join(map(str, vs))))
+        f.write("$EndElements\n")
+
+
+def test_gmsh():
+    """A Gmsh file of the same triangulation as the built-in rectangle, with
+    physical names bottom/right/top/left as boundary labels, gives the same
+    mms_stokes errors to 1e-8 relative, on 1 and 2 ranks."""
+    w = work("gmsh")
+    msh = os.path.join(w, "square.msh")
+    write_gmsh_square(msh, 8)
+    run("mms_stokes", ["-mesh_nx", "8", "-mesh_ny", "8", "-output_fields", "0"], os.path.join(w, "rect"))
+    run("mms_stokes", ["-mesh_file", msh, "-output_fields", "0"], os.path.join(w, "msh"))
+    run("mms_stokes", ["-mesh_file", msh, "-output_fields", "0"], os.path.join(w, "msh2"), ranks=2)
+    a, b, c = summary(os.path.join(w, "rect")), summary(os.path.join(w, "msh")), summary(os.path.join(w, "msh2"))
+    for k in ("err_u_l2", "err_p_l2"):
+        print("%s: rectangle %.10e, gmsh %.10e, gmsh on 2 ranks %.10e" % (k, a[k], b[k], c[k]))
+        for other in (b, c):
+            if abs(a[k] - other[k]) > 1e-8 * a[k]:
+                fail("%s expected %g, got %g" % (k, a[k], other[k]))
+
+
+INPUT_CASES = [
+    # (name, args, word that the one-sentence message must contain)
+    ("unknown_scene", ["-scene", "no_such_scene"], "-scene"),
+    ("unknown_rheology", ["-scene", "poiseuille", "-rheology_type", "no_such_model"], "-rheology_type"),
+    ("negative_viscosity", ["-scene", "poiseuille", "-rheology_viscosity", "-1"], "-rheology_viscosity"),
+    ("missing_mesh", ["-scene", "mms_stokes", "-mesh_file", "/nonexistent/mesh.msh"], "-mesh_file"),
+    ("unreadable_options", ["-scene", "mms_stokes", "-options_file", "/nonexistent/opts.txt"], "-options_file"),
+    ("bad_rtol", ["-scene", "decay", "-time_rtol", "2"], "-time_rtol"),
+]
+
+
+def test_input():
+    """Bad input: non-zero exit, exactly one line on stderr naming the option,
+    no crash (no PETSc traceback), and no output directory left behind."""
+    w = work("input")
+    for name, args, word in INPUT_CASES:
+        out = os.path.join(w, name)
+        cmd = [ARGS.slump] + args + ["-output_dir", out]
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        lines = [l for l in p.stderr.splitlines() if l.strip()]
+        print("%-20s exit %d: %s" % (name, p.returncode, lines[0] if lines else "(no message)"))
+        if p.returncode == 0:
+            fail("%s: expected a non-zero exit" % name)
+        if p.returncode < 0 or p.returncode > 128:
+            fail("%s: crashed (exit %d)" % (name, p.returncode))
+        if len(lines) != 1 or word not in lines[0] or "PETSC ERROR" in p.stderr:
+            fail("%s: expected one sentence naming %s on stderr, got:\n%s" % (name, word, p.stderr))
+        if os.path.exists(out):
+            fail("%s: output directory %s was created" % (name, out))
+
+
+TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser()
+    ap.add_argument("test", choices=sorted(TESTS))
+    ap.add_argument("--slump", required=True)
+    ap.add_argument("--mpiexec", default="mpiexec")
+    ap.add_argument("--work", required=True)
+    ARGS = ap.parse_args()
+    os.makedirs(ARGS.work, exist_ok=True)
+    TESTS[ARGS.test]()
+    print("PASS %s" % ARGS.test)

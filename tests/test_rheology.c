@@ -1,0 +1,91 @@
+/* Unit test: for every registered model and every regime (plug, yielded,
+ * ||gdot|| -> 0, p -> 0, p < 0), d eta/d||gdot|| and d eta/dp match centred
+ * finite differences to 1e-6 relative, and eta is finite and positive.
+ * Also checks that invalid parameters are refused. Prints nothing on success. */
+#include "slumprheology.h"
+
+static int failures = 0;
+
+static PetscErrorCode Check(SlumpRheology r, const char *model, PetscReal g, PetscReal p)
+{
+  PetscReal eta, dg, dp, ep, em, h;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyEvaluate(r, g, p, &eta, &dg, &dp));
+  if (!(eta > 0) || PetscIsInfOrNanReal(eta)) {
+    printf("%s: eta(%g, %g) = %g, expected finite and positive\n", model, (double)g, (double)p, (double)eta);
+    failures++;
+  }
+  /* d/dg: relative step, one-sided near g = 0 (the law is defined for g >= 0) */
+  h = PetscMax(1e-6 * g, 1e-12);
+  if (g > h) {
+    PetscCall(SlumpRheologyEvaluate(r, g + h, p, &ep, NULL, NULL));
+    PetscCall(SlumpRheologyEvaluate(r, g - h, p, &em, NULL, NULL));
+    const PetscReal fd = (ep - em) / (2 * h), scale = PetscMax(PetscAbsReal(dg), PetscAbsReal(eta) / PetscMax(g, 1e-300) * 1e-6);
+    if (PetscAbsReal(fd - dg) > 1e-6 * PetscMax(scale, 1e-300) && PetscAbsReal(fd - dg) > 1e-9 * PetscAbsReal(eta) / h) {
+      printf("%s: d eta/d gdot at (%g, %g): analytic %.10e, centred FD %.10e\n", model, (double)g, (double)p, (double)dg, (double)fd);
+      failures++;
+    }
+  }
+  h = PetscMax(1e-6 * PetscAbsReal(p), 1e-8);
+  PetscCall(SlumpRheologyEvaluate(r, g, p + h, &ep, NULL, NULL));
+  PetscCall(SlumpRheologyEvaluate(r, g, p - h, &em, NULL, NULL));
+  {
+    const PetscReal fd = (ep - em) / (2 * h);
+    if (PetscAbsReal(fd - dp) > 1e-6 * PetscMax(PetscAbsReal(dp), PetscAbsReal(eta) * 1e-3)) {
+      printf("%s: d eta/dp at (%g, %g): analytic %.10e, centred FD %.10e\n", model, (double)g, (double)p, (double)dp, (double)fd);
+      failures++;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+int main(int argc, char **argv)
+{
+  const char *models[] = {SLUMP_RHEOLOGY_NEWTONIAN, SLUMP_RHEOLOGY_PAPANASTASIOU, SLUMP_RHEOLOGY_BERCOVIER, SLUMP_RHEOLOGY_BINGHAM_SIMPLE};
+  const PetscReal gs[] = {1e-9, 1e-6, 1e-4, 1e-3, 1e-2, 0.1, 1.0, 10.0, 1e3};
+  const PetscReal ps[] = {-1.0, 0.0, 1e-8, 1.0, 100.0};
+  const PetscReal regs[] = {1e2, 1e4, 1e6};
+  SlumpRheology r;
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(SlumpRheologyCreate(PETSC_COMM_WORLD, &r));
+  for (size_t m = 0; m < sizeof(models) / sizeof(models[0]); ++m) {
+    PetscCall(SlumpRheologySetType(r, models[m]));
+    const char *regname;
+    PetscReal   regval;
+    PetscBool   larger;
+    PetscCall(SlumpRheologyGetRegularisation(r, &regname, &regval, &larger));
+    for (size_t k = 0; k < (regname ? 3 : 1); ++k) {
+      if (regname) PetscCall(SlumpRheologySetParameter(r, regname, larger ? regs[k] : 1.0 / regs[k]));
+      for (size_t i = 0; i < sizeof(gs) / sizeof(gs[0]); ++i)
+        for (size_t j = 0; j < sizeof(ps) / sizeof(ps[0]); ++j) PetscCall(Check(r, models[m], gs[i], ps[j]));
+    }
+    /* plug viscosity of Papanastasiou: eta_p + tau0 m */
+    if (!strcmp(models[m], SLUMP_RHEOLOGY_PAPANASTASIOU)) {
+      PetscReal eta0;
+      PetscCall(SlumpRheologySetParameter(r, "m", 1e4));
+      PetscCall(SlumpRheologyGetPlugViscosity(r, 0.0, &eta0));
+      if (PetscAbsReal(eta0 - (1.0 + 1.0 * 1e4)) > 1e-10 * eta0) {
+        printf("papanastasiou plug viscosity: expected %g, got %g\n", 1.0 + 1e4, (double)eta0);
+        failures++;
+      }
+    }
+  }
+  /* invalid parameters are refused */
+  PetscCall(SlumpRheologySetType(r, SLUMP_RHEOLOGY_PAPANASTASIOU));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  PetscCall(SlumpRheologySetParameter(r, "yield_stress", -1.0));
+  if (!SlumpRheologyCheck(r)) {
+    printf("a negative yield stress was accepted\n");
+    failures++;
+  }
+  PetscCall(SlumpRheologySetParameter(r, "yield_stress", 1.0));
+  PetscCall(SlumpRheologySetParameter(r, "m", 0.0));
+  if (!SlumpRheologyCheck(r)) {
+    printf("m = 0 was accepted\n");
+    failures++;
+  }
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(SlumpRheologyDestroy(&r));
+  PetscCall(PetscFinalize());
+  return failures ? 1 : 0;
+}
