@@ -4,6 +4,8 @@
 
 const char *const SlumpEffectNames[] = {"inertia", "convection", "body_force"};
 
+static PetscErrorCode ZeroFn(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx);
+
 PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
 {
   SlumpProblem p;
@@ -269,6 +271,95 @@ static PetscErrorCode FreeSlipComponent(SlumpProblem prob, DMLabel label, PetscI
   PetscFunctionReturn(0);
 }
 
+/* Does any boundary face leave its normal velocity free (traction or partial
+   Dirichlet)? If none does the flow is enclosed and the pressure level is free. */
+static PetscErrorCode PressureDetermined(SlumpProblem prob, PetscBool *determined)
+{
+  DMLabel  bnd;
+  IS       faceIS;
+  PetscInt fStart, fEnd, found = 0;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetLabel(prob->dm, "boundary", &bnd));
+  PetscCall(DMPlexGetHeightStratum(prob->dm, 1, &fStart, &fEnd));
+  PetscCall(DMLabelGetStratumIS(bnd, 1, &faceIS));
+  if (faceIS) {
+    const PetscInt *faces;
+    PetscInt        n;
+    PetscCall(ISGetLocalSize(faceIS, &n));
+    PetscCall(ISGetIndices(faceIS, &faces));
+    for (PetscInt i = 0; i < n && !found; ++i) {
+      PetscBool fixed[3] = {PETSC_FALSE, PETSC_FALSE, PETSC_FALSE};
+      PetscReal area, c[3], nrm[3];
+      PetscInt  dim;
+      if (faces[i] < fStart || faces[i] >= fEnd) continue;
+      PetscCall(DMGetDimension(prob->dm, &dim));
+      PetscCall(DMPlexComputeCellGeometryFVM(prob->dm, faces[i], &area, c, nrm));
+      for (PetscInt b = 0; b < prob->nbc; ++b) {
+        DMLabel  label;
+        PetscInt val;
+        PetscCall(DMGetLabel(prob->dm, prob->bc[b].label, &label));
+        if (!label) continue;
+        PetscCall(DMLabelGetValue(label, faces[i], &val));
+        if (val < 0) continue;
+        if (prob->bc[b].kind == SLUMP_BC_DIRICHLET) {
+          if (!prob->bc[b].ncomp)
+            for (PetscInt d = 0; d < dim; ++d) fixed[d] = PETSC_TRUE;
+          for (PetscInt k = 0; k < prob->bc[b].ncomp; ++k) fixed[prob->bc[b].comps[k]] = PETSC_TRUE;
+        } else if (prob->bc[b].kind == SLUMP_BC_FREESLIP) {
+          for (PetscInt d = 0; d < dim; ++d)
+            if (PetscAbsReal(nrm[d]) > 1e-8 * PetscSqrtReal(area)) fixed[d] = PETSC_TRUE;
+        }
+      }
+      for (PetscInt d = 0; d < dim; ++d)
+        if (!fixed[d] && PetscAbsReal(nrm[d]) > 1e-12) found = 1;
+    }
+    PetscCall(ISRestoreIndices(faceIS, &faces));
+    PetscCall(ISDestroy(&faceIS));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &found, 1, MPIU_INT, MPI_MAX, prob->comm));
+  *determined = found ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* Enclosed flow: fix the pressure at the vertex with the smallest x + y (ties:
+   smallest x), to the scene's reference pressure there, or 0. */
+static PetscErrorCode PinPressure(SlumpProblem prob)
+{
+  DM                 cdm;
+  Vec                coords;
+  const PetscScalar *xa;
+  PetscInt           vStart, vEnd, best = -1, dim;
+  PetscReal          key[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, gkey[2];
+  DMLabel            label;
+  const PetscInt     one = 1;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDimension(prob->dm, &dim));
+  PetscCall(DMPlexGetDepthStratum(prob->dm, 0, &vStart, &vEnd));
+  PetscCall(DMGetCoordinateDM(prob->dm, &cdm));
+  PetscCall(DMGetCoordinatesLocal(prob->dm, &coords));
+  PetscCall(VecGetArrayRead(coords, &xa));
+  for (PetscInt v = vStart; v < vEnd; ++v) {
+    PetscSection cs;
+    PetscInt     off;
+    PetscCall(DMGetLocalSection(cdm, &cs));
+    PetscCall(PetscSectionGetOffset(cs, v, &off));
+    const PetscReal k0 = PetscRealPart(xa[off] + xa[off + 1]), k1 = PetscRealPart(xa[off]);
+    if (k0 < key[0] - 1e-12 || (PetscAbsReal(k0 - key[0]) <= 1e-12 && k1 < key[1])) {
+      key[0] = k0;
+      key[1] = k1;
+      best   = v;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(coords, &xa));
+  gkey[0] = key[0];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, gkey, 1, MPIU_REAL, MPIU_MIN, prob->comm));
+  PetscCall(DMCreateLabel(prob->dm, "pressure_pin"));
+  PetscCall(DMGetLabel(prob->dm, "pressure_pin", &label));
+  if (best >= 0 && PetscAbsReal(key[0] - gkey[0]) <= 1e-12) PetscCall(DMLabelSetValue(label, best, 1));
+  PetscCall(DMAddBoundary(prob->dm, DM_BC_ESSENTIAL, "pressure_pin", label, 1, &one, 1, 0, NULL, (void (*)(void))(prob->pex ? prob->pex : ZeroFn), NULL, prob->exctx, NULL));
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode ZeroFn(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
 {
   for (PetscInt c = 0; c < Nc; ++c) u[c] = 0.0;
@@ -374,6 +465,12 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
     }
     PetscCall(PetscFree(ids));
   }
+  {
+    PetscBool determined = PETSC_TRUE;
+    PetscCall(PressureDetermined(prob, &determined));
+    prob->pressurePinned = determined ? PETSC_FALSE : PETSC_TRUE;
+    if (prob->pressurePinned) PetscCall(PinPressure(prob));
+  }
   PetscCall(SlumpProblemSetConstantsAll(prob));
   PetscCall(SlumpAssemblyCreate(prob));
   PetscCall(DMCreateLocalVector(prob->dm, &prob->locX));
@@ -451,6 +548,7 @@ PetscErrorCode SlumpProblemView(SlumpProblem prob, PetscViewer viewer)
     if (prob->effects & (1 << e)) PetscCall(PetscViewerASCIIPrintf(viewer, " %s", SlumpEffectNames[e]));
   if (prob->momentumSource) PetscCall(PetscViewerASCIIPrintf(viewer, " scene_source"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+  if (prob->pressurePinned) PetscCall(PetscViewerASCIIPrintf(viewer, "enclosed flow: pressure fixed at one vertex\n"));
   PetscCall(SlumpRheologyView(prob->rheo, viewer));
   PetscFunctionReturn(0);
 }

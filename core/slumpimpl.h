@@ -36,7 +36,7 @@ struct _n_SlumpProblem {
   SlumpPointFn  u0, uex, pex;
   void         *u0ctx, *exctx;
   char          flowRateLabel[64];
-  PetscBool     setup;
+  PetscBool     setup, pressurePinned;
   PetscReal     area;
   PetscScalar   constants[SLUMP_C_NUM];
   PetscInt      jacmode;

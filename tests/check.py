@@ -85,6 +85,42 @@ def test_mms_stokes():
         fail("pressure order expected >= 1.8, got %s" % op)
 
 
+def test_mms_enclosed():
+    """Enclosed flow (Dirichlet on all sides): the pressure level is fixed at
+    one vertex and the same orders hold: velocity >= 2.8, pressure >= 1.8."""
+    w = work("mms_enclosed")
+    eu, ep = [], []
+    for n in (8, 16, 32):
+        d = os.path.join(w, "n%d" % n)
+        p = run("mms_stokes", ["-mms_enclosed", "-mesh_nx", str(n), "-mesh_ny", str(n), "-output_fields", "0"], d)
+        if "pressure fixed at one vertex" not in p.stdout:
+            fail("an enclosed flow should report its pressure pin")
+        s = summary(d)
+        eu.append(s["err_u_l2"])
+        ep.append(s["err_p_l2"])
+    ou = [order(eu[i], eu[i + 1]) for i in range(2)]
+    op = [order(ep[i], ep[i + 1]) for i in range(2)]
+    print("enclosed: velocity orders %s, pressure orders %s" % (ou, op))
+    if min(ou) < 2.8 or min(op) < 1.8:
+        fail("enclosed orders expected >= 2.8 and >= 1.8, got %s and %s" % (ou, op))
+
+
+def test_poiseuille_half():
+    """Free slip: the half channel 0 <= y <= 1 with a free-slip symmetry plane
+    at y = 0 (16 cells across) reproduces the Bingham profile: relative L2
+    error <= 1e-3 at m = 1e6 and the plug half-width within one cell."""
+    d = work("poiseuille_half")
+    run("poiseuille", ["-half_channel", "-rheology_papanastasiou_m", "1e6", "-steady_continuation_start", "1e2", "-output_fields", "0"], d)
+    s = summary(d)
+    rel = s["err_u_l2"] / s["norm_u_l2"]
+    h = 1.0 / 16
+    print("half channel, m = 1e6: relative L2 error %.3e; plug half-width %.4f (exact %.4f)" % (rel, s["plug_half_width"], s["plug_half_width_exact"]))
+    if not rel <= 1e-3:
+        fail("relative L2 velocity error expected <= 1e-3, got %g" % rel)
+    if not abs(s["plug_half_width"] - s["plug_half_width_exact"]) <= h:
+        fail("plug half-width expected within %g of %g, got %g" % (h, s["plug_half_width_exact"], s["plug_half_width"]))
+
+
 def test_decay_bdf2():
     """Fixed-step BDF2 on the decaying sine: observed order in time >= 1.9."""
     w = work("decay_bdf2")

@@ -3,7 +3,8 @@
  *   p = cos(pi x) cos(pi y),
  *   f = -div(eta gdot) + grad p = 2 pi^2 eta u + grad p.
  * Dirichlet u on bottom, top, left; the exact traction (-p I + eta gdot) n on
- * the right, which also fixes the pressure level. Taylor-Hood P2/P1 should
+ * the right, which also fixes the pressure level (-mms_enclosed: Dirichlet
+ * everywhere; the pressure is then fixed at one vertex). Taylor-Hood P2/P1 should
  * converge at order 3 (velocity, L2) and 2 (pressure, L2). */
 #include "common.h"
 
@@ -47,7 +48,11 @@ PetscErrorCode SlumpSceneCreate_MMSStokes(SlumpScene scene, SlumpProblem prob, M
   SlumpRheology rheo;
   DM            dm;
   PetscReal     lower[2] = {0.0, 0.0}, upper[2] = {1.0, 1.0};
+  PetscBool     enclosed = PETSC_FALSE;
   PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "Scene mms_stokes", "");
+  PetscCall(PetscOptionsBool("-mms_enclosed", "Dirichlet on all four sides (enclosed flow: the pressure level is fixed at one vertex)", "", enclosed, &enclosed, NULL));
+  PetscOptionsEnd();
   scene->steady    = PETSC_TRUE;
   scene->mesh_n[0] = 8;
   scene->mesh_n[1] = 8;
@@ -61,7 +66,8 @@ PetscErrorCode SlumpSceneCreate_MMSStokes(SlumpScene scene, SlumpProblem prob, M
   PetscCall(SlumpProblemAddVelocityBC(prob, "bottom", "bottom", 0, NULL, ExactU, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "top", "top", 0, NULL, ExactU, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "left", "left", 0, NULL, ExactU, NULL, NULL));
-  PetscCall(SlumpProblemAddTractionBC(prob, "right", Traction));
+  if (enclosed) PetscCall(SlumpProblemAddVelocityBC(prob, "right", "right", 0, NULL, ExactU, NULL, NULL));
+  else PetscCall(SlumpProblemAddTractionBC(prob, "right", Traction));
   PetscCall(SlumpProblemSetExactSolution(prob, ExactU, ExactP, NULL));
   PetscFunctionReturn(0);
 }

@@ -4,7 +4,8 @@
  * traction at inlet/outlet (so p = 0). Plug half-width y0 = tau0/G;
  *   y0 <= |y| <= H: u = G (H^2 - y^2)/(2 eta_p) - tau0 (H - |y|)/eta_p,
  *   plug:           u = G (H - y0)^2 / (2 eta_p).
- * Options: -bn (= y0/H = tau0/(G H), default 0.3), -channel_length. */
+ * Options: -bn (= y0/H = tau0/(G H), default 0.3), -channel_length,
+ * -half_channel (0 <= y <= H with free slip, the symmetry plane, at y = 0). */
 #include "common.h"
 
 typedef struct {
@@ -62,6 +63,7 @@ PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene scene, SlumpProblem prob, 
   SlumpRheology  rheo;
   DM             dm;
   PetscReal      bn = 0.3, L = 0.5, lower[2], upper[2];
+  PetscBool      half = PETSC_FALSE;
   const PetscInt compy = 1;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
@@ -71,14 +73,15 @@ PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene scene, SlumpProblem prob, 
   PetscOptionsBegin(comm, NULL, "Scene poiseuille", "");
   PetscCall(PetscOptionsReal("-bn", "Bingham number tau0/(G H) = plug half-width / H", "", bn, &bn, NULL));
   PetscCall(PetscOptionsReal("-channel_length", "Channel length", "", L, &L, NULL));
+  PetscCall(PetscOptionsBool("-half_channel", "Half channel 0 <= y <= H, free slip on the symmetry plane y = 0", "", half, &half, NULL));
   PetscOptionsEnd();
   PetscCheck(bn >= 0, comm, PETSC_ERR_USER_INPUT, "-bn must be non-negative; got %g", (double)bn);
   PetscCheck(L > 0, comm, PETSC_ERR_USER_INPUT, "-channel_length must be positive; got %g", (double)L);
   scene->steady    = PETSC_TRUE;
   scene->mesh_n[0] = 4;
-  scene->mesh_n[1] = 32;
+  scene->mesh_n[1] = half ? 16 : 32;
   lower[0]         = 0.0;
-  lower[1]         = -c->H;
+  lower[1]         = half ? 0.0 : -c->H;
   upper[0]         = L;
   upper[1]         = c->H;
   PetscCall(SlumpSceneCreateMesh(scene, comm, lower, upper, &dm));
@@ -92,7 +95,8 @@ PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene scene, SlumpProblem prob, 
   PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
   PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->G * c->H));
   PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  if (half) PetscCall(SlumpProblemAddFreeSlipBC(prob, "bottom"));
+  else PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "inlet_v", "left", 1, &compy, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "right", 1, &compy, SlumpZeroVelocity, NULL, NULL));
