@@ -14,6 +14,7 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene, SlumpProblem
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Decay(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_MMSStokes(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CouetteStartup(SlumpScene, SlumpProblem, MPI_Comm);
 
 PetscErrorCode SlumpSceneRegister(const char name[], const char description[], SlumpSceneCreateFn create)
 {
@@ -32,6 +33,7 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("couette_cessation", "Bingham plane Couette flow, top plate stopped at t = 0 (the demo): adaptive BDF2 to arrest", SlumpSceneCreate_CouetteCessation));
   PetscCall(SlumpSceneRegister("poiseuille", "steady Bingham plane Poiseuille flow driven by a pressure gradient; analytic solution", SlumpSceneCreate_Poiseuille));
   PetscCall(SlumpSceneRegister("decay", "Newtonian flow between plates decaying as sin(pi y) exp(-pi^2 nu t); analytic solution", SlumpSceneCreate_Decay));
+  PetscCall(SlumpSceneRegister("couette_startup", "Newtonian Couette start-up, top plate accelerating as 1 - exp(-t/tau); exact series solution", SlumpSceneCreate_CouetteStartup));
   PetscCall(SlumpSceneRegister("mms_stokes", "manufactured Stokes solution on the unit square (Dirichlet + traction); spatial orders", SlumpSceneCreate_MMSStokes));
   PetscFunctionReturn(0);
 }

@@ -156,6 +156,32 @@ def test_decay_ida():
         fail("error at rtol 1e-6 expected <= 1/50 of that at 1e-3 (%g), got %g" % (errs[1e-3] / 50, errs[1e-6]))
 
 
+def test_startup():
+    """Time-dependent Dirichlet data: Couette start-up with the top plate at
+    V(t) = 1 - exp(-t/0.05), against the exact series solution at t = 0.2.
+    IDA: relative L2 error <= 10 x rtol for rtol = 1e-3, 1e-4; fixed-step
+    BDF2 (dt = 4e-3, 2e-3, 1e-3): observed order >= 1.9."""
+    w = work("startup")
+    for rtol in (1e-3, 1e-4):
+        d = os.path.join(w, "ida%g" % rtol)
+        run("couette_startup", ["-time_rtol", str(rtol), "-time_atol", "1e-8", "-output_fields", "0"], d)
+        s = summary(d)
+        e = s["err_u_l2"] / s["norm_u_l2"]
+        print("IDA rtol %g: relative error %.3e (%.2f x rtol), %d steps" % (rtol, e, e / rtol, s["steps"]))
+        if not e <= 10 * rtol:
+            fail("rtol %g: error expected <= %g, got %g" % (rtol, 10 * rtol, e))
+    err = []
+    for dt in (0.004, 0.002, 0.001):
+        d = os.path.join(w, "bdf2_%g" % dt)
+        run("couette_startup", ["-time_integrator", "bdf2", "-time_dt", str(dt), "-output_fields", "0"], d)
+        s = summary(d)
+        err.append(s["err_u_l2"] / s["norm_u_l2"])
+    o = [order(err[i], err[i + 1]) for i in range(2)]
+    print("BDF2 relative errors %s, orders %s" % (err, o))
+    if min(o) < 1.9:
+        fail("BDF2 order expected >= 1.9, got %s" % o)
+
+
 def test_poiseuille():
     """Bingham-Papanastasiou plane Poiseuille, continuation m = 1e2 -> 1e6 on a
     32-cell-across mesh: relative L2 velocity error <= 1e-3; plug half-width
