@@ -65,19 +65,23 @@ def work(name):
 
 
 # ----------------------------------------------------------------- tests
-def test_mms_stokes():
-    """Taylor-Hood P2/P1 on the manufactured Stokes solution: L2 orders over
-    three refinements, velocity >= 2.8, pressure >= 1.8."""
-    w = work("mms")
+def mms_orders(name, extra):
+    """L2 errors and observed orders of mms_stokes on 8, 16, 32 cells a side."""
+    w = work(name)
     eu, ep = [], []
     for n in (8, 16, 32):
         d = os.path.join(w, "n%d" % n)
-        run("mms_stokes", ["-mesh_nx", str(n), "-mesh_ny", str(n), "-output_fields", "0"], d)
+        p = run("mms_stokes", extra + ["-mesh_nx", str(n), "-mesh_ny", str(n), "-output_fields", "0"], d)
         s = summary(d)
         eu.append(s["err_u_l2"])
         ep.append(s["err_p_l2"])
-    ou = [order(eu[i], eu[i + 1]) for i in range(2)]
-    op = [order(ep[i], ep[i + 1]) for i in range(2)]
+    return eu, ep, [order(eu[i], eu[i + 1]) for i in range(2)], [order(ep[i], ep[i + 1]) for i in range(2)], p
+
+
+def test_mms_stokes():
+    """Taylor-Hood P2/P1 on the manufactured Stokes solution: L2 orders over
+    three refinements, velocity >= 2.8, pressure >= 1.8."""
+    eu, ep, ou, op, _ = mms_orders("mms", [])
     print("velocity L2 errors %s orders %s; pressure L2 errors %s orders %s" % (eu, ou, ep, op))
     if min(ou) < 2.8:
         fail("velocity order expected >= 2.8, got %s" % ou)
@@ -88,18 +92,9 @@ def test_mms_stokes():
 def test_mms_enclosed():
     """Enclosed flow (Dirichlet on all sides): the pressure level is fixed at
     one vertex and the same orders hold: velocity >= 2.8, pressure >= 1.8."""
-    w = work("mms_enclosed")
-    eu, ep = [], []
-    for n in (8, 16, 32):
-        d = os.path.join(w, "n%d" % n)
-        p = run("mms_stokes", ["-mms_enclosed", "-mesh_nx", str(n), "-mesh_ny", str(n), "-output_fields", "0"], d)
-        if "pressure fixed at one vertex" not in p.stdout:
-            fail("an enclosed flow should report its pressure pin")
-        s = summary(d)
-        eu.append(s["err_u_l2"])
-        ep.append(s["err_p_l2"])
-    ou = [order(eu[i], eu[i + 1]) for i in range(2)]
-    op = [order(ep[i], ep[i + 1]) for i in range(2)]
+    eu, ep, ou, op, p = mms_orders("mms_enclosed", ["-mms_enclosed"])
+    if "pressure fixed at one vertex" not in p.stdout:
+        fail("an enclosed flow should report its pressure pin")
     print("enclosed: velocity orders %s, pressure orders %s" % (ou, op))
     if min(ou) < 2.8 or min(op) < 1.8:
         fail("enclosed orders expected >= 2.8 and >= 1.8, got %s and %s" % (ou, op))
@@ -266,6 +261,29 @@ def test_demo():
     ntimes = xmf.count("<Time ")
     if ntimes != len(ser):
         fail("fields.xmf expected %d time steps, got %d" % (len(ser), ntimes))
+    check_xdmf(d)
+
+
+def check_xdmf(d):
+    """Every HDF5 dataset fields.xmf points to exists in fields.h5 with the
+    dimensions the XDMF file declares (read with h5ls)."""
+    import xml.etree.ElementTree as ET
+    h5 = subprocess.run(["h5ls", "-r", os.path.join(d, "fields.h5")], capture_output=True, text=True, check=True).stdout
+    dims = {}
+    for line in h5.splitlines():
+        parts = line.split(None, 1)
+        if len(parts) == 2 and parts[1].startswith("Dataset"):
+            dims[parts[0]] = [int(x.split("/")[0]) for x in parts[1].split("{")[1].rstrip("}").split(",")]
+    n = 0
+    for item in ET.parse(os.path.join(d, "fields.xmf")).iter("DataItem"):
+        if item.get("Format") != "HDF":
+            continue
+        path = item.text.strip().split(":", 1)[1]
+        want = [int(x) for x in item.get("Dimensions").split()]
+        if dims.get(path) != want:
+            fail("fields.xmf declares %s with dimensions %s; fields.h5 has %s" % (path, want, dims.get(path)))
+        n += 1
+    print("fields.xmf: %d HDF5 references, all present with the declared dimensions" % n)
 
 
 def write_gmsh_square(path, n):

@@ -45,9 +45,7 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
 {
   CouetteCtx    *c;
   SlumpRheology  rheo;
-  DM             dm;
   PetscReal      bn = 1.0, lower[2] = {0.0, 0.0}, upper[2];
-  const PetscInt compy = 1;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   scene->ctx = c;
@@ -65,9 +63,7 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   scene->mesh_n[1]        = 32;
   upper[0]                = 0.25 * c->H;
   upper[1]                = c->H;
-  PetscCall(SlumpSceneCreateMesh(scene, comm, lower, upper, &dm));
-  PetscCall(SlumpProblemSetMesh(prob, dm));
-  PetscCall(DMDestroy(&dm));
+  PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
@@ -77,8 +73,7 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   /* both plates at rest for t >= 0 */
   PetscCall(SlumpProblemAddVelocityBC(prob, "plate_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "plate_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "inlet_v", "left", 1, &compy, SlumpZeroVelocity, NULL, NULL));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "right", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpSceneChannelEnds(prob));
   PetscCall(SlumpProblemSetInitialVelocity(prob, InitialU, c));
   scene->results = Results;
   PetscCall(SlumpSceneAddParameter(scene, "bn_option", bn));

@@ -57,9 +57,7 @@ PetscErrorCode SlumpSceneCreate_CouetteStartup(SlumpScene scene, SlumpProblem pr
 {
   StartupCtx    *c;
   SlumpRheology  rheo;
-  DM             dm;
   PetscReal      lower[2] = {0.0, 0.0}, upper[2] = {0.25, 1.0};
-  const PetscInt compy    = 1;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   scene->ctx = c;
@@ -76,17 +74,14 @@ PetscErrorCode SlumpSceneCreate_CouetteStartup(SlumpScene scene, SlumpProblem pr
   scene->dtout     = 0.01;
   scene->mesh_n[0] = 2;
   scene->mesh_n[1] = 32;
-  PetscCall(SlumpSceneCreateMesh(scene, comm, lower, upper, &dm));
-  PetscCall(SlumpProblemSetMesh(prob, dm));
-  PetscCall(DMDestroy(&dm));
+  PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   c->rheo = rheo;
   PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_NEWTONIAN));
   PetscCall(SlumpProblemAddVelocityBC(prob, "plate_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "plate_top", "top", 0, NULL, WallU, WallU_t, c));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "inlet_v", "left", 1, &compy, SlumpZeroVelocity, NULL, NULL));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "right", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpSceneChannelEnds(prob));
   PetscCall(SlumpProblemSetInitialVelocity(prob, SlumpZeroVelocity, NULL));
   PetscCall(SlumpProblemSetExactSolution(prob, ExactU, ExactP, c));
   PetscCall(SlumpSceneAddParameter(scene, "tau", c->tau));

@@ -29,9 +29,7 @@ PetscErrorCode SlumpSceneCreate_Decay(SlumpScene scene, SlumpProblem prob, MPI_C
 {
   DecayCtx      *c;
   SlumpRheology  rheo;
-  DM             dm;
   PetscReal      lower[2] = {0.0, 0.0}, upper[2];
-  const PetscInt compy    = 1;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   scene->ctx = c;
@@ -47,17 +45,14 @@ PetscErrorCode SlumpSceneCreate_Decay(SlumpScene scene, SlumpProblem prob, MPI_C
   scene->mesh_n[1] = 32;
   upper[0]         = 0.25 * c->L;
   upper[1]         = c->L;
-  PetscCall(SlumpSceneCreateMesh(scene, comm, lower, upper, &dm));
-  PetscCall(SlumpProblemSetMesh(prob, dm));
-  PetscCall(DMDestroy(&dm));
+  PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   c->rheo = rheo;
   PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_NEWTONIAN));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "inlet_v", "left", 1, &compy, SlumpZeroVelocity, NULL, NULL));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "right", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpSceneChannelEnds(prob));
   PetscCall(SlumpProblemSetInitialVelocity(prob, ExactU, c));
   PetscCall(SlumpProblemSetExactSolution(prob, ExactU, ExactP, c));
   PetscCall(SlumpSceneAddParameter(scene, "L", c->L));

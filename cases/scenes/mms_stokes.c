@@ -46,7 +46,6 @@ static void Traction(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt u
 PetscErrorCode SlumpSceneCreate_MMSStokes(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   SlumpRheology rheo;
-  DM            dm;
   PetscReal     lower[2] = {0.0, 0.0}, upper[2] = {1.0, 1.0};
   PetscBool     enclosed = PETSC_FALSE;
   PetscFunctionBeginUser;
@@ -56,9 +55,7 @@ PetscErrorCode SlumpSceneCreate_MMSStokes(SlumpScene scene, SlumpProblem prob, M
   scene->steady    = PETSC_TRUE;
   scene->mesh_n[0] = 8;
   scene->mesh_n[1] = 8;
-  PetscCall(SlumpSceneCreateMesh(scene, comm, lower, upper, &dm));
-  PetscCall(SlumpProblemSetMesh(prob, dm));
-  PetscCall(DMDestroy(&dm));
+  PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, 0));
   PetscCall(SlumpProblemSetMomentumSource(prob, Source));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));

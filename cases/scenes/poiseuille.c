@@ -61,10 +61,8 @@ PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene scene, SlumpProblem prob, 
 {
   PoiseuilleCtx *c;
   SlumpRheology  rheo;
-  DM             dm;
   PetscReal      bn = 0.3, L = 0.5, lower[2], upper[2];
   PetscBool      half = PETSC_FALSE;
-  const PetscInt compy = 1;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   scene->ctx = c;
@@ -84,9 +82,7 @@ PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene scene, SlumpProblem prob, 
   lower[1]         = half ? 0.0 : -c->H;
   upper[0]         = L;
   upper[1]         = c->H;
-  PetscCall(SlumpSceneCreateMesh(scene, comm, lower, upper, &dm));
-  PetscCall(SlumpProblemSetMesh(prob, dm));
-  PetscCall(DMDestroy(&dm));
+  PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_BODY_FORCE));
   PetscCall(SlumpProblemSetBodyForce(prob, c->G, 0.0));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
@@ -98,8 +94,7 @@ PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene scene, SlumpProblem prob, 
   if (half) PetscCall(SlumpProblemAddFreeSlipBC(prob, "bottom"));
   else PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "inlet_v", "left", 1, &compy, SlumpZeroVelocity, NULL, NULL));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "right", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpSceneChannelEnds(prob));
   PetscCall(SlumpProblemSetFlowRateBoundary(prob, "right"));
   PetscCall(SlumpProblemSetExactSolution(prob, ExactU, ExactP, c));
   scene->results = Results;
