@@ -175,6 +175,7 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
   PetscCall(SlumpProblemCreateVector(prob, &X));
   PetscCall(PetscObjectSetName((PetscObject)X, "solution"));
   PetscCall(SlumpProblemProjectInitialState(prob, 0.0, X));
+  if (scene->initial) PetscCall(scene->initial(scene, prob, X));
   PetscCall(PetscMemzero(&stats, sizeof(stats)));
   if (scene->steady) {
     PetscCall(SlumpSteadySolve(prob, X, &stats));

@@ -20,6 +20,8 @@ struct _n_SlumpScene {
   PetscInt  nparam;
   char      pname[SLUMP_SCENE_MAX_ITEMS][32];
   PetscReal pvalue[SLUMP_SCENE_MAX_ITEMS];
+  /* optional: compute the initial state into X (e.g. a steady state by KINSOL) */
+  PetscErrorCode (*initial)(SlumpScene, SlumpProblem, Vec X);
   /* scene-specific results at the end of the run (plug width, bounds, ...) */
   PetscErrorCode (*results)(SlumpScene, SlumpProblem, PetscReal t, Vec X);
   PetscInt  nresult;

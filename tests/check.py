@@ -286,6 +286,23 @@ def check_xdmf(d):
     print("fields.xmf: %d HDF5 references, all present with the declared dimensions" % n)
 
 
+def test_couette_steady_initial():
+    """KINSOL computes the initial state (steady flow with the plate moving,
+    -couette_initial steady); the arrest time agrees with the run from the
+    analytic profile u = y within 10 x rtol (rtol = 1e-4)."""
+    w = work("couette_steady_initial")
+    opts = ["-time_final", "0.11", "-output_fields", "0"]
+    run("couette_cessation", opts, os.path.join(w, "analytic"))
+    p = run("couette_cessation", opts + ["-couette_initial", "steady"], os.path.join(w, "steady"))
+    if "steady: Newton" not in p.stdout:
+        fail("the steady initial solve did not report its Newton line")
+    a, b = summary(os.path.join(w, "analytic")), summary(os.path.join(w, "steady"))
+    rel = abs(a["t_arrest"] - b["t_arrest"]) / a["t_arrest"]
+    print("arrest time: analytic start %.8f, steady start %.8f, rel diff %.2e" % (a["t_arrest"], b["t_arrest"], rel))
+    if not rel <= 1e-3:
+        fail("arrest times expected to agree within 1e-3 relative, got %g" % rel)
+
+
 def write_gmsh_square(path, n):
     """A Gmsh 2.2 ASCII file of the unit square, n x n squares cut like
     SlumpMeshCreateRectangle, with physical lines bottom/right/top/left."""

@@ -5,12 +5,55 @@
  * The flow stops in finite time; the energy estimate bounds the exact
  * stopping time: T_stop <= ln(1 + pi^2 / (2 sqrt(3) Bn)) / pi^2.
  * Regularised models creep instead; the arrest time is where the mean shear
- * rate falls below -arrest_mean_shear_rate (root-found by the integrator). */
+ * rate falls below -arrest_mean_shear_rate (root-found by the integrator).
+ * -couette_initial analytic|steady: the initial profile u = V y/H, or the
+ * steady flow with the plate moving computed by KINSOL (same mesh, same
+ * rheology, no inertia); both must give the same run. */
 #include "common.h"
 
 typedef struct {
   PetscReal V, H;
+  PetscReal lower[2], upper[2];
 } CouetteCtx;
+
+static PetscErrorCode PlateU(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
+{
+  u[0] = ((const CouetteCtx *)ctx)->V;
+  u[1] = 0.0;
+  return 0;
+}
+
+/* Steady Couette flow with the top plate moving, by KINSOL, on a second
+   problem built on the same mesh: its unknowns have the same layout. */
+static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
+{
+  CouetteCtx   *c = (CouetteCtx *)scene->ctx;
+  SlumpProblem  p0;
+  SlumpStats    st;
+  Vec           X0;
+  MPI_Comm      comm;
+  PetscInt      n0, n;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
+  PetscCall(PetscPrintf(comm, "initial state: steady flow with the plate moving (KINSOL)\n"));
+  PetscCall(SlumpProblemCreate(comm, &p0));
+  PetscCall(SlumpSceneSetMesh(scene, p0, comm, c->lower, c->upper));
+  PetscCall(SlumpProblemSetEffects(p0, 0));
+  PetscCall(SlumpProblemAddVelocityBC(p0, "plate_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpProblemAddVelocityBC(p0, "plate_top", "top", 0, NULL, PlateU, NULL, c));
+  PetscCall(SlumpSceneChannelEnds(p0));
+  PetscCall(SlumpProblemSetFromOptions(p0)); /* same rheology options as the run */
+  PetscCall(SlumpProblemSetUp(p0));
+  PetscCall(SlumpProblemCreateVector(p0, &X0));
+  PetscCall(VecGetSize(X0, &n0));
+  PetscCall(VecGetSize(X, &n));
+  PetscCheck(n0 == n, comm, PETSC_ERR_PLIB, "Steady and transient problems have different layouts");
+  PetscCall(SlumpSteadySolve(p0, X0, &st));
+  PetscCall(VecCopy(X0, X));
+  PetscCall(VecDestroy(&X0));
+  PetscCall(SlumpProblemDestroy(&p0));
+  PetscFunctionReturn(0);
+}
 
 static PetscErrorCode InitialU(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
 {
@@ -46,6 +89,8 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   CouetteCtx    *c;
   SlumpRheology  rheo;
   PetscReal      bn = 1.0, lower[2] = {0.0, 0.0}, upper[2];
+  const char    *kinds[] = {"analytic", "steady"};
+  PetscInt       kind    = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   scene->ctx = c;
@@ -53,6 +98,7 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   c->H       = 1.0;
   PetscOptionsBegin(comm, NULL, "Scene couette_cessation", "");
   PetscCall(PetscOptionsReal("-bn", "Bingham number tau0 H / (eta_p V)", "", bn, &bn, NULL));
+  PetscCall(PetscOptionsEList("-couette_initial", "Initial state: analytic (u = V y/H) or steady (KINSOL, plate moving)", "", kinds, 2, kinds[kind], &kind, NULL));
   PetscOptionsEnd();
   PetscCheck(bn >= 0, comm, PETSC_ERR_USER_INPUT, "-bn must be non-negative; got %g", (double)bn);
   scene->steady           = PETSC_FALSE;
@@ -64,6 +110,11 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   upper[0]                = 0.25 * c->H;
   upper[1]                = c->H;
   PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
+  c->lower[0] = lower[0];
+  c->lower[1] = lower[1];
+  c->upper[0] = upper[0];
+  c->upper[1] = upper[1];
+  if (kind == 1) scene->initial = SteadyInitial;
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
