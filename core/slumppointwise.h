@@ -31,11 +31,11 @@ static inline PetscReal SlumpPwStrainRate(PetscInt dim, const PetscScalar u_x[],
   return PetscSqrtReal(0.5 * s);
 }
 
-static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscScalar prm[], SlumpViscosityKernel k, PetscScalar f1[])
+static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], SlumpViscosityKernel k, PetscScalar f1[])
 {
   PetscScalar gd[9];
   PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty;
-  k(prm, g, PetscRealPart(p), &eta, &de_dg, &de_dp, &ty);
+  k(prm, g, PetscRealPart(p), x, &eta, &de_dg, &de_dp, &ty);
   for (PetscInt c = 0; c < dim; ++c) {
     for (PetscInt d = 0; d < dim; ++d) f1[c * dim + d] = eta * gd[c * dim + d];
     f1[c * dim + c] -= p;
@@ -44,7 +44,7 @@ static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar 
 
 /* d f1[c,d] / d u_x[e,f] = eta (delta_ce delta_df + delta_de delta_cf) + eta' gd_cd gd_ef / ||gdot||.
    jacmode 1 (consistent initialisation) drops the viscous block. */
-static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g3[])
+static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g3[])
 {
   PetscScalar gd[9];
   PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty;
@@ -53,7 +53,7 @@ static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar 
     for (PetscInt i = 0; i < n * n; ++i) g3[i] = 0.0;
     return;
   }
-  k(prm, g, PetscRealPart(p), &eta, &de_dg, &de_dp, &ty);
+  k(prm, g, PetscRealPart(p), x, &eta, &de_dg, &de_dp, &ty);
   const PetscReal r = g > SLUMP_GDOT_TINY ? de_dg / g : 0.0;
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt d = 0; d < dim; ++d)
@@ -67,11 +67,11 @@ static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar 
 }
 
 /* d f1[c,d] / d p = -delta_cd + (d eta/dp) gd_cd. */
-static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g2[])
+static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g2[])
 {
   PetscScalar gd[9];
   PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp = 0.0, ty;
-  if (jacmode != 1) k(prm, g, PetscRealPart(p), &eta, &de_dg, &de_dp, &ty);
+  if (jacmode != 1) k(prm, g, PetscRealPart(p), x, &eta, &de_dg, &de_dp, &ty);
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = de_dp * gd[c * dim + d] - (c == d ? 1.0 : 0.0);
 }
@@ -80,21 +80,21 @@ static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar 
 #define SLUMP_RHEOLOGY_DEFINE_POINTWISE(NAME, KERNEL) \
   static void NAME##_f1_u(SLUMP_PW_ARGS, PetscScalar f1[]) \
   { \
-    SlumpPwF1(dim, u_x, u[uOff[1]], &constants[SLUMP_C_RHEO], KERNEL, f1); \
+    SlumpPwF1(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], KERNEL, f1); \
   } \
   static void NAME##_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
   { \
-    SlumpPwG3(dim, u_x, u[uOff[1]], &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g3); \
+    SlumpPwG3(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g3); \
   } \
   static void NAME##_g2_up(SLUMP_PWJ_ARGS, PetscScalar g2[]) \
   { \
-    SlumpPwG2(dim, u_x, u[uOff[1]], &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g2); \
+    SlumpPwG2(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g2); \
   } \
   static void NAME##_eta(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
     PetscScalar gd[9]; \
     PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
-    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), &eta, &d1_, &d2_, &ty); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), x, &eta, &d1_, &d2_, &ty); \
     f[0] = eta; \
   } \
   static void NAME##_shear_rate(SLUMP_PW_ARGS, PetscScalar f[]) \
@@ -106,14 +106,14 @@ static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar 
   { \
     PetscScalar gd[9]; \
     PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
-    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), &eta, &d1_, &d2_, &ty); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), x, &eta, &d1_, &d2_, &ty); \
     f[0] = eta * g * g; \
   } \
   static void NAME##_yielded(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
     PetscScalar gd[9]; \
     PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
-    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), &eta, &d1_, &d2_, &ty); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), x, &eta, &d1_, &d2_, &ty); \
     f[0] = (eta * g > ty) ? 1.0 : 0.0; \
   } \
   static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded};

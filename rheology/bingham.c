@@ -20,7 +20,7 @@ static inline void PapanastasiouShape(PetscReal x, PetscReal *f, PetscReal *df)
   }
 }
 
-static inline void PapanastasiouKernel(const PetscScalar prm[], PetscReal g, PetscReal p, PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
+static inline void PapanastasiouKernel(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
 {
   const PetscReal etap = PetscRealPart(prm[0]), tau0 = PetscRealPart(prm[1]), m = PetscRealPart(prm[2]);
   PetscReal       f, df;
@@ -31,7 +31,7 @@ static inline void PapanastasiouKernel(const PetscScalar prm[], PetscReal g, Pet
   *ty    = tau0;
 }
 
-static inline void BercovierKernel(const PetscScalar prm[], PetscReal g, PetscReal p, PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
+static inline void BercovierKernel(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
 {
   const PetscReal etap = PetscRealPart(prm[0]), tau0 = PetscRealPart(prm[1]), eps = PetscRealPart(prm[2]);
   const PetscReal s    = PetscSqrtReal(g * g + eps * eps);
@@ -41,7 +41,7 @@ static inline void BercovierKernel(const PetscScalar prm[], PetscReal g, PetscRe
   *ty    = tau0;
 }
 
-static inline void SimpleKernel(const PetscScalar prm[], PetscReal g, PetscReal p, PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
+static inline void SimpleKernel(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
 {
   const PetscReal etap = PetscRealPart(prm[0]), tau0 = PetscRealPart(prm[1]), eps = PetscRealPart(prm[2]);
   *eta   = etap + tau0 / (g + eps);

@@ -1,7 +1,7 @@
 /* Newtonian fluid: tau = eta gdot, eta constant (-rheology_viscosity). */
 #include "rheologyimpl.h"
 
-static inline void NewtonianKernel(const PetscScalar prm[], PetscReal g, PetscReal p, PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
+static inline void NewtonianKernel(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
 {
   *eta   = PetscRealPart(prm[0]);
   *de_dg = 0.0;

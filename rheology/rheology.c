@@ -24,6 +24,9 @@ PetscErrorCode SlumpRheologyRegisterAll(void)
   PetscCall(SlumpRheologyRegister(SLUMP_RHEOLOGY_PAPANASTASIOU, SlumpRheologyCreate_Papanastasiou));
   PetscCall(SlumpRheologyRegister(SLUMP_RHEOLOGY_BERCOVIER, SlumpRheologyCreate_Bercovier));
   PetscCall(SlumpRheologyRegister(SLUMP_RHEOLOGY_BINGHAM_SIMPLE, SlumpRheologyCreate_BinghamSimple));
+  PetscCall(SlumpRheologyRegister_HerschelBulkley());
+  PetscCall(SlumpRheologyRegister_MuI());
+  PetscCall(SlumpRheologyRegister_DruckerPrager());
   PetscFunctionReturn(0);
 }
 
@@ -202,10 +205,25 @@ PetscErrorCode SlumpRheologyEvaluate(SlumpRheology rheo, PetscReal gdot, PetscRe
   PetscInt    n;
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetConstants(rheo, &n, prm));
-  rheo->kernel(prm, gdot, p, &a, &b, &c, &ty);
+  rheo->kernel(prm, gdot, p, NULL, &a, &b, &c, &ty);
   if (eta) *eta = a;
   if (deta_dgdot) *deta_dgdot = b;
   if (deta_dp) *deta_dp = c;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpRheologyEvaluateAt(SlumpRheology rheo, PetscReal gdot, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp, PetscReal *yield_stress)
+{
+  PetscScalar prm[SLUMP_RHEOLOGY_MAX_PARAM];
+  PetscReal   a, b, c, ty;
+  PetscInt    n;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetConstants(rheo, &n, prm));
+  rheo->kernel(prm, gdot, p, x, &a, &b, &c, &ty);
+  if (eta) *eta = a;
+  if (deta_dgdot) *deta_dgdot = b;
+  if (deta_dp) *deta_dp = c;
+  if (yield_stress) *yield_stress = ty;
   PetscFunctionReturn(0);
 }
 
@@ -216,7 +234,7 @@ PetscErrorCode SlumpRheologyGetYieldStress(SlumpRheology rheo, PetscReal p, Pets
   PetscInt    n;
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetConstants(rheo, &n, prm));
-  rheo->kernel(prm, 1.0, p, &a, &b, &c, tau_y);
+  rheo->kernel(prm, 1.0, p, NULL, &a, &b, &c, tau_y);
   PetscFunctionReturn(0);
 }
 

@@ -32,6 +32,55 @@ struct _p_SlumpRheology {
   PetscBool              reg_larger_stiffer;
 };
 
+/* Regularised 1/||gdot|| of a yield term and its derivative:
+   simple 1/(g + e), Bercovier-Engelman 1/sqrt(g^2 + e^2),
+   Papanastasiou (1 - exp(-m g))/g (r = m). */
+typedef enum { SLUMP_REG_SIMPLE, SLUMP_REG_BERCOVIER, SLUMP_REG_PAPANASTASIOU } SlumpRegKind;
+
+static inline void SlumpYieldShape(SlumpRegKind kind, PetscReal r, PetscReal g, PetscReal *R, PetscReal *dR)
+{
+  if (kind == SLUMP_REG_SIMPLE) {
+    *R  = 1.0 / (g + r);
+    *dR = -(*R) * (*R);
+  } else if (kind == SLUMP_REG_BERCOVIER) {
+    const PetscReal q = g * g + r * r, sq = PetscSqrtReal(q);
+    *R  = 1.0 / sq;
+    *dR = -g / (q * sq);
+  } else {
+    const PetscReal x = r * g;
+    PetscReal       f, df;
+    if (x < 1e-3) {
+      f  = 1.0 - x / 2.0 + x * x / 6.0 - x * x * x / 24.0;
+      df = -0.5 + x / 3.0 - x * x / 8.0;
+    } else {
+      const PetscReal e = PetscExpReal(-x), om = -expm1(-x);
+      f  = om / x;
+      df = (e * x - om) / (x * x);
+    }
+    *R  = r * f;
+    *dR = r * r * df;
+  }
+}
+
+/* Smooth positive part of the pressure (Chauchat & Medale eq. 16):
+   P = (p + sqrt(p^2 + d^2))/2, or max(p, 0) when d = 0. */
+static inline void SlumpPositivePressure(PetscReal p, PetscReal d, PetscReal *P, PetscReal *dP)
+{
+  if (d > 0) {
+    const PetscReal s = PetscSqrtReal(p * p + d * d);
+    if (p >= 0) {
+      *P  = 0.5 * (p + s);
+      *dP = 0.5 * (1.0 + p / s);
+    } else { /* rationalised: no cancellation as p -> -infinity */
+      *P  = 0.5 * d * d / (s - p);
+      *dP = *P / s;
+    }
+  } else {
+    *P  = p > 0 ? p : 0.0;
+    *dP = p > 0 ? 1.0 : 0.0;
+  }
+}
+
 /* Used by implementations: declare a parameter (keeps a value already set by name). */
 PETSC_INTERN PetscErrorCode SlumpRheologyAddParameter(SlumpRheology, const char name[], const char option[], const char help[], PetscReal value, PetscReal lower, PetscBool strict);
 
@@ -39,3 +88,6 @@ PETSC_INTERN PetscErrorCode SlumpRheologyCreate_Newtonian(SlumpRheology);
 PETSC_INTERN PetscErrorCode SlumpRheologyCreate_Papanastasiou(SlumpRheology);
 PETSC_INTERN PetscErrorCode SlumpRheologyCreate_Bercovier(SlumpRheology);
 PETSC_INTERN PetscErrorCode SlumpRheologyCreate_BinghamSimple(SlumpRheology);
+PETSC_INTERN PetscErrorCode SlumpRheologyRegister_HerschelBulkley(void);
+PETSC_INTERN PetscErrorCode SlumpRheologyRegister_DruckerPrager(void);
+PETSC_INTERN PetscErrorCode SlumpRheologyRegister_MuI(void);

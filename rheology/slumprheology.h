@@ -16,8 +16,9 @@ typedef const char *SlumpRheologyType;
 #define SLUMP_RHEOLOGY_BERCOVIER      "bercovier"
 #define SLUMP_RHEOLOGY_BINGHAM_SIMPLE "bingham_simple"
 
-/* One point: params[] are the model's parameters in declaration order. */
-typedef void (*SlumpViscosityKernel)(const PetscScalar params[], PetscReal gdot, PetscReal p, PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp, PetscReal *yield_stress);
+/* One point: params[] are the model's parameters in declaration order; x the
+   position (lithostatic yield stress). */
+typedef void (*SlumpViscosityKernel)(const PetscScalar params[], PetscReal gdot, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp, PetscReal *yield_stress);
 
 PETSC_EXTERN PetscErrorCode SlumpRheologyCreate(MPI_Comm comm, SlumpRheology *rheo);
 PETSC_EXTERN PetscErrorCode SlumpRheologyDestroy(SlumpRheology *rheo);
@@ -40,6 +41,8 @@ PETSC_EXTERN PetscErrorCode SlumpRheologyGetConstants(SlumpRheology rheo, PetscI
 
 /* Host-side evaluation (tests, diagnostics). */
 PETSC_EXTERN PetscErrorCode SlumpRheologyEvaluate(SlumpRheology rheo, PetscReal gdot, PetscReal p, PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp);
+/* The same at a position x[dim] (models whose law depends on position). */
+PETSC_EXTERN PetscErrorCode SlumpRheologyEvaluateAt(SlumpRheology rheo, PetscReal gdot, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp, PetscReal *yield_stress);
 PETSC_EXTERN PetscErrorCode SlumpRheologyGetYieldStress(SlumpRheology rheo, PetscReal p, PetscReal *tau_y);
 /* Viscosity of the (regularised) unyielded material, ||gdot|| -> 0. */
 PETSC_EXTERN PetscErrorCode SlumpRheologyGetPlugViscosity(SlumpRheology rheo, PetscReal p, PetscReal *eta_plug);

@@ -1,0 +1,134 @@
+/* Frictional yield stresses with a viscous part (Chupin, Dubois & Phan 2019;
+ * REFERENCES.md):
+ *   Drucker-Prager:  tau_y = mu P(p),  P = (p + sqrt(p^2 + d^2))/2 (eq. 16 of
+ *                    Chauchat & Medale; max(p, 0) when d = 0),
+ *   lithostatic:     tau_y = mu rho g (H - y)_+  (independent of p),
+ *   eta = eta_p + tau_y R(||gdot||),
+ * R = 1/(g + eps) (_simple), 1/sqrt(g^2 + eps^2) (_bercovier),
+ *     (1 - exp(-m g))/g (_papanastasiou).
+ * Types dp_* and litho_*. */
+#include "rheologyimpl.h"
+
+static inline void DPKernel(SlumpRegKind kind, const PetscScalar prm[], PetscReal g, PetscReal p, PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
+{
+  const PetscReal etap = PetscRealPart(prm[0]), mu = PetscRealPart(prm[1]), r = PetscRealPart(prm[2]), d = PetscRealPart(prm[3]);
+  PetscReal       R, dR, P, dP;
+  SlumpYieldShape(kind, r, g, &R, &dR);
+  SlumpPositivePressure(p, d, &P, &dP);
+  *eta   = etap + mu * P * R;
+  *de_dg = mu * P * dR;
+  *de_dp = mu * R * dP;
+  *ty    = mu * P;
+}
+
+static inline void LithoKernel(SlumpRegKind kind, const PetscScalar prm[], PetscReal g, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
+{
+  const PetscReal etap = PetscRealPart(prm[0]), mu = PetscRealPart(prm[1]), rho = PetscRealPart(prm[2]), grav = PetscRealPart(prm[3]), H = PetscRealPart(prm[4]), r = PetscRealPart(prm[5]);
+  const PetscReal depth = H - (x ? x[1] : 0.0), tauy = mu * rho * grav * (depth > 0 ? depth : 0.0);
+  PetscReal       R, dR;
+  SlumpYieldShape(kind, r, g, &R, &dR);
+  *eta   = etap + tauy * R;
+  *de_dg = tauy * dR;
+  *de_dp = 0.0;
+  *ty    = tauy;
+}
+
+#define DP_KERNEL(NAME, KIND) \
+  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty) \
+  { \
+    DPKernel(KIND, prm, g, p, eta, de_dg, de_dp, ty); \
+  }
+#define LITHO_KERNEL(NAME, KIND) \
+  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty) \
+  { \
+    LithoKernel(KIND, prm, g, x, eta, de_dg, de_dp, ty); \
+  }
+DP_KERNEL(DPSimpleKernel, SLUMP_REG_SIMPLE)
+DP_KERNEL(DPBercovierKernel, SLUMP_REG_BERCOVIER)
+DP_KERNEL(DPPapanastasiouKernel, SLUMP_REG_PAPANASTASIOU)
+LITHO_KERNEL(LithoSimpleKernel, SLUMP_REG_SIMPLE)
+LITHO_KERNEL(LithoBercovierKernel, SLUMP_REG_BERCOVIER)
+LITHO_KERNEL(LithoPapanastasiouKernel, SLUMP_REG_PAPANASTASIOU)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPSimple, DPSimpleKernel)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPBercovier, DPBercovierKernel)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPPapanastasiou, DPPapanastasiouKernel)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoSimple, LithoSimpleKernel)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoBercovier, LithoBercovierKernel)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoPapanastasiou, LithoPapanastasiouKernel)
+
+static PetscErrorCode AddRegParameter(SlumpRheology rheo, SlumpRegKind kind)
+{
+  PetscFunctionBeginUser;
+  rheo->ireg               = rheo->nparam;
+  rheo->reg_larger_stiffer = kind == SLUMP_REG_PAPANASTASIOU ? PETSC_TRUE : PETSC_FALSE;
+  if (kind == SLUMP_REG_PAPANASTASIOU) PetscCall(SlumpRheologyAddParameter(rheo, "m", "-rheology_papanastasiou_m", "Papanastasiou exponent m", 1e3, 0.0, PETSC_TRUE));
+  else if (kind == SLUMP_REG_BERCOVIER) PetscCall(SlumpRheologyAddParameter(rheo, "eps", "-rheology_bercovier_eps", "Bercovier-Engelman epsilon", 1e-3, 0.0, PETSC_TRUE));
+  else PetscCall(SlumpRheologyAddParameter(rheo, "eps", "-rheology_simple_eps", "Simple regularisation epsilon", 1e-3, 0.0, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode DPCommon(SlumpRheology rheo, SlumpRegKind kind)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyAddParameter(rheo, "viscosity", "-rheology_viscosity", "Viscous part eta_p", 1.0, 0.0, PETSC_FALSE));
+  PetscCall(SlumpRheologyAddParameter(rheo, "mu", "-rheology_dp_mu", "Friction coefficient mu (tan of the friction angle)", 0.5, 0.0, PETSC_FALSE));
+  PetscCall(AddRegParameter(rheo, kind));
+  PetscCall(SlumpRheologyAddParameter(rheo, "p_reg", "-rheology_pressure_reg", "Pressure regularisation d of (p + sqrt(p^2 + d^2))/2 (0: max(p, 0))", 1e-4, 0.0, PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LithoCommon(SlumpRheology rheo, SlumpRegKind kind)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyAddParameter(rheo, "viscosity", "-rheology_viscosity", "Viscous part eta_p", 1.0, 0.0, PETSC_FALSE));
+  PetscCall(SlumpRheologyAddParameter(rheo, "mu", "-rheology_dp_mu", "Friction coefficient mu", 0.5, 0.0, PETSC_FALSE));
+  PetscCall(SlumpRheologyAddParameter(rheo, "density", "-rheology_litho_density", "Density in the lithostatic yield stress", 1.0, 0.0, PETSC_TRUE));
+  PetscCall(SlumpRheologyAddParameter(rheo, "gravity", "-rheology_litho_gravity", "Gravity in the lithostatic yield stress", 1.0, 0.0, PETSC_FALSE));
+  PetscCall(SlumpRheologyAddParameter(rheo, "height", "-rheology_litho_height", "Height H of the free surface (yield stress mu rho g (H - y))", 1.0, 0.0, PETSC_TRUE));
+  PetscCall(AddRegParameter(rheo, kind));
+  PetscFunctionReturn(0);
+}
+
+/* The viscosity must stay positive: eta_p > 0 or a yield term everywhere. */
+static PetscErrorCode DPCheck(SlumpRheology rheo)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(rheo->param[0].value > 0 || rheo->param[3].value > 0, rheo->comm, PETSC_ERR_USER_INPUT, "-rheology_viscosity must be positive when -rheology_pressure_reg is 0 (the viscosity would vanish where p <= 0)");
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode LithoCheck(SlumpRheology rheo)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(rheo->param[0].value > 0, rheo->comm, PETSC_ERR_USER_INPUT, "-rheology_viscosity must be positive for the lithostatic model (its yield stress vanishes above the free surface)");
+  PetscFunctionReturn(0);
+}
+
+#define CREATE(NAME, COMMON, KIND, KERNEL, PW, CHECK) \
+  static PetscErrorCode NAME(SlumpRheology rheo) \
+  { \
+    PetscFunctionBeginUser; \
+    PetscCall(COMMON(rheo, KIND)); \
+    rheo->kernel    = KERNEL; \
+    rheo->pointwise = PW; \
+    rheo->ops.check = CHECK; \
+    PetscFunctionReturn(0); \
+  }
+CREATE(CreateDPSimple, DPCommon, SLUMP_REG_SIMPLE, DPSimpleKernel, DPSimple_pointwise, DPCheck)
+CREATE(CreateDPBercovier, DPCommon, SLUMP_REG_BERCOVIER, DPBercovierKernel, DPBercovier_pointwise, DPCheck)
+CREATE(CreateDPPapanastasiou, DPCommon, SLUMP_REG_PAPANASTASIOU, DPPapanastasiouKernel, DPPapanastasiou_pointwise, DPCheck)
+CREATE(CreateLithoSimple, LithoCommon, SLUMP_REG_SIMPLE, LithoSimpleKernel, LithoSimple_pointwise, LithoCheck)
+CREATE(CreateLithoBercovier, LithoCommon, SLUMP_REG_BERCOVIER, LithoBercovierKernel, LithoBercovier_pointwise, LithoCheck)
+CREATE(CreateLithoPapanastasiou, LithoCommon, SLUMP_REG_PAPANASTASIOU, LithoPapanastasiouKernel, LithoPapanastasiou_pointwise, LithoCheck)
+
+PetscErrorCode SlumpRheologyRegister_DruckerPrager(void)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyRegister("dp_papanastasiou", CreateDPPapanastasiou));
+  PetscCall(SlumpRheologyRegister("dp_bercovier", CreateDPBercovier));
+  PetscCall(SlumpRheologyRegister("dp_simple", CreateDPSimple));
+  PetscCall(SlumpRheologyRegister("litho_papanastasiou", CreateLithoPapanastasiou));
+  PetscCall(SlumpRheologyRegister("litho_bercovier", CreateLithoBercovier));
+  PetscCall(SlumpRheologyRegister("litho_simple", CreateLithoSimple));
+  PetscFunctionReturn(0);
+}
