@@ -177,6 +177,38 @@ def test_startup():
         fail("BDF2 order expected >= 1.9, got %s" % o)
 
 
+def newton_histories(stdout):
+    """Per continuation step, the max|F| history printed by -newton_monitor."""
+    hist, cur = [], []
+    for line in stdout.splitlines():
+        if line.startswith("  newton"):
+            cur.append(float(line.split("max|F|")[1].split()[0]))
+        elif line.startswith("steady:"):
+            hist.append((line.split("Newton")[0].strip(), cur))
+            cur = []
+    return hist
+
+
+def test_newton_quadratic():
+    """Exact tangents give quadratic Newton convergence: on Bingham-Papanastasiou
+    Poiseuille (continuation m = 1e2 ... 1e6), at every continuation step the
+    last two Newton contractions whose result is above the round-off level
+    (>= 1e-9) satisfy r_{k+1} <= C r_k^2 with C = 1e3 (max-norm residuals)."""
+    d = work("newton_quadratic")
+    p = run("poiseuille", ["-rheology_papanastasiou_m", "1e6", "-steady_continuation_start", "1e2", "-newton_monitor", "-output_fields", "0"], d)
+    hist = newton_histories(p.stdout)
+    if len(hist) != 5:
+        fail("expected 5 continuation steps, got %d" % len(hist))
+    for label, r in hist:
+        pairs = [(r[k], r[k + 1]) for k in range(len(r) - 1) if r[k + 1] >= 1e-9][-2:]
+        ratios = [b / a ** 2 for a, b in pairs]
+        print("%-28s residuals %s; last contractions r1/r0^2 = %s" % (label, " ".join("%.1e" % x for x in r), " ".join("%.0f" % x for x in ratios)))
+        if len(pairs) < 2:
+            fail("%s: too few Newton steps above round-off to judge: %s" % (label, r))
+        if max(ratios) > 1e3:
+            fail("%s: contraction r_{k+1}/r_k^2 expected <= 1e3, got %s" % (label, ratios))
+
+
 def test_poiseuille():
     """Bingham-Papanastasiou plane Poiseuille, continuation m = 1e2 -> 1e6 on a
     32-cell-across mesh: relative L2 velocity error <= 1e-3; plug half-width

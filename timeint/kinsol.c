@@ -19,6 +19,8 @@ struct _n_SlumpImplicitSolver {
   Vec             beta;
   PetscInt        maxit;
   SlumpStats      stats;
+  PetscReal       hist[128]; /* max|F| at each Newton iterate of the last solve */
+  PetscInt        nhist;
 };
 
 static PetscErrorCode FormYdot(SlumpImplicitSolver s, Vec u, Vec *ydot)
@@ -49,10 +51,11 @@ static int KinFunc(N_Vector u, N_Vector f, void *user)
   return SlumpCheckFinite(N_VGetVector_Petsc(f));
 }
 
-static PetscErrorCode KinJac_Private(SlumpImplicitSolver s, Vec u)
+static PetscErrorCode KinJac_Private(SlumpImplicitSolver s, Vec u, Vec fu)
 {
   Vec ydot;
   PetscFunctionBeginUser;
+  if (s->nhist < 128) PetscCall(VecNorm(fu, NORM_INFINITY, &s->hist[s->nhist++]));
   PetscCall(FormYdot(s, u, &ydot));
   PetscCall(SlumpProblemJacobian(s->prob, s->t, u, ydot, s->alpha, s->J));
   PetscFunctionReturn(0);
@@ -60,7 +63,7 @@ static PetscErrorCode KinJac_Private(SlumpImplicitSolver s, Vec u)
 
 static int KinJac(N_Vector u, N_Vector fu, SUNMatrix J, void *user, N_Vector t1, N_Vector t2)
 {
-  return SlumpSundialsStatus(KinJac_Private((SlumpImplicitSolver)user, N_VGetVector_Petsc(u)));
+  return SlumpSundialsStatus(KinJac_Private((SlumpImplicitSolver)user, N_VGetVector_Petsc(u), N_VGetVector_Petsc(fu)));
 }
 
 PetscErrorCode SlumpImplicitSolverCreate(SlumpProblem prob, Vec X, SlumpImplicitSolver *solver)
@@ -150,6 +153,7 @@ PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, Pets
   s->alpha = alpha;
   s->beta  = beta;
   PetscCall(VecCopy(X, s->u));
+  s->nhist = 0;
   PetscCall(KinFunc_Private(s, s->u, s->work));
   PetscCall(VecNorm(s->work, NORM_INFINITY, &f0));
   tol = PetscMax(s->fnormtol, s->fnormrtol * f0);
@@ -174,6 +178,14 @@ PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, Pets
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpImplicitSolverGetHistory(SlumpImplicitSolver s, PetscInt *n, const PetscReal **hist)
+{
+  PetscFunctionBeginUser;
+  *n    = s->nhist;
+  *hist = s->hist;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *stats)
 {
   PetscFunctionBeginUser;
@@ -187,7 +199,7 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
   SlumpRheology       rheo;
   const char         *regname;
   PetscReal           target, start = 0.0, factor = 10.0, v;
-  PetscBool           larger_stiffer, set;
+  PetscBool           larger_stiffer, set, monitor = PETSC_FALSE;
   MPI_Comm            comm;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
@@ -195,6 +207,7 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
   PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &larger_stiffer));
   PetscOptionsBegin(comm, NULL, "Steady solve", "SlumpSteadySolve");
   PetscCall(PetscOptionsReal("-steady_continuation_start", "First value of the regularisation parameter (continuation towards the model's value)", "", start, &start, &set));
+  PetscCall(PetscOptionsBool("-newton_monitor", "Print max|F| at every Newton iterate", "", monitor, &monitor, NULL));
   PetscCall(PetscOptionsReal("-steady_continuation_factor", "Factor between continuation steps (> 1)", "", factor, &factor, NULL));
   PetscOptionsEnd();
   PetscCheck(factor > 1.0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_factor must be > 1; got %g", (double)factor);
@@ -218,9 +231,17 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
     PetscCall(SlumpProblemResidual(prob, 0.0, X, NULL, F));
     PetscCall(VecNorm(F, NORM_INFINITY, &fn));
     PetscCall(VecDestroy(&F));
+    if (monitor) {
+      PetscInt         nh;
+      const PetscReal *h;
+      PetscCall(SlumpImplicitSolverGetHistory(s, &nh, &h));
+      for (PetscInt k = 0; k < nh; ++k) PetscCall(PetscPrintf(comm, "  newton %3" PetscInt_FMT " max|F| %.6e\n", k, (double)h[k]));
+      PetscCall(PetscPrintf(comm, "  newton %3" PetscInt_FMT " max|F| %.6e (final)\n", nh, (double)fn));
+    }
     if (regname) PetscCall(PetscPrintf(comm, "steady: %s = %-10.4g Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", regname, (double)v, nits, lits, (double)fn, conv ? "" : "  (not converged)"));
     else PetscCall(PetscPrintf(comm, "steady: Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", nits, lits, (double)fn, conv ? "" : "  (not converged)"));
-    PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge%s%s; try -steady_continuation_start, -newton_max_it or a softer regularisation", regname ? " at " : "", regname ? regname : "");
+    PetscCheck(conv || !regname, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge at %s = %g; try -steady_continuation_start, -newton_max_it or a softer regularisation", regname, (double)v);
+    PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge; try -newton_max_it or a better initial state");
     if (last) break;
     v = larger_stiffer ? v * factor : v / factor;
   }

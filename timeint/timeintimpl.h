@@ -30,6 +30,7 @@ PETSC_INTERN PetscErrorCode SlumpImplicitSolverCreate(SlumpProblem prob, Vec X, 
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverDestroy(SlumpImplicitSolver *s);
 /* Returns converged = PETSC_FALSE (no error) when KINSOL fails. */
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, PetscReal alpha, Vec beta, Vec X, PetscBool *converged, PetscInt *newton_its, PetscInt *lin_its);
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetHistory(SlumpImplicitSolver s, PetscInt *n, const PetscReal **hist);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *stats);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverSetTolerance(SlumpImplicitSolver s, PetscReal fnormtol);
 
