@@ -100,6 +100,53 @@ def test_mms_enclosed():
         fail("enclosed orders expected >= 2.8 and >= 1.8, got %s and %s" % (ou, op))
 
 
+POISEUILLE_MODELS = [
+    # (label, options); continuation from soft to the target regularisation
+    ("bingham bercovier eps=1e-6", ["-rheology_type", "bercovier", "-rheology_bercovier_eps", "1e-6", "-steady_continuation_start", "1e-2"]),
+    ("bingham simple eps=1e-6", ["-rheology_type", "bingham_simple", "-rheology_simple_eps", "1e-6", "-steady_continuation_start", "1e-2"]),
+    ("HB n=0.5 papanastasiou m=1e6", ["-rheology_type", "hb_papanastasiou", "-rheology_hb_n", "0.5", "-rheology_papanastasiou_m", "1e6", "-steady_continuation_start", "1e2"]),
+    ("HB n=0.5 bercovier eps=1e-6", ["-rheology_type", "hb_bercovier", "-rheology_hb_n", "0.5", "-rheology_bercovier_eps", "1e-6", "-steady_continuation_start", "1e-2"]),
+    ("HB n=1.5 simple eps=1e-6", ["-rheology_type", "hb_simple", "-rheology_hb_n", "1.5", "-rheology_simple_eps", "1e-6", "-steady_continuation_start", "1e-2"]),
+]
+
+
+def test_poiseuille_models():
+    """Plane Poiseuille with every Bingham regularisation and with
+    Herschel-Bulkley (n = 0.5, 1.5), 32 cells across, Bn = 0.3: relative L2
+    velocity error <= 1e-3 against the exact profile and the plug half-width
+    within one cell (2/32) of tau0/G."""
+    w = work("poiseuille_models")
+    for k, (label, opts) in enumerate(POISEUILLE_MODELS):
+        d = os.path.join(w, "m%d" % k)
+        run("poiseuille", opts + ["-output_fields", "0"], d)
+        s = summary(d)
+        rel = s["err_u_l2"] / s["norm_u_l2"]
+        print("%-30s relative L2 error %.3e, plug half-width %.4f (exact %.4f), %d Newton" % (label, rel, s["plug_half_width"], s["plug_half_width_exact"], s["newton_its"]))
+        if not rel <= 1e-3:
+            fail("%s: relative L2 error expected <= 1e-3, got %g" % (label, rel))
+        if not abs(s["plug_half_width"] - s["plug_half_width_exact"]) <= 2.0 / 32:
+            fail("%s: plug half-width expected within %g of %g, got %g" % (label, 2.0 / 32, s["plug_half_width_exact"], s["plug_half_width"]))
+
+
+def test_stability_poiseuille_plug90():
+    """Hard case: Bingham-Papanastasiou Poiseuille at m = 1e6 with the plug
+    filling 90 % of the channel (Bn = 0.9), continuation from m = 1e2: every
+    continuation step converges within 15 Newton iterations (budget), the
+    outputs are finite, and the plug half-width is within one cell of 0.9."""
+    d = work("stability_plug90")
+    p = run("poiseuille", ["-bn", "0.9", "-rheology_papanastasiou_m", "1e6", "-steady_continuation_start", "1e2", "-output_fields", "0"], d)
+    its = [int(l.split("Newton")[1].split()[0]) for l in p.stdout.splitlines() if l.startswith("steady:")]
+    s = summary(d)
+    print("Newton iterations per continuation step %s; plug half-width %.4f; relative L2 error %.3e" % (its, s["plug_half_width"], s["err_u_l2"] / s["norm_u_l2"]))
+    if len(its) != 5 or max(its) > 15:
+        fail("expected 5 continuation steps of <= 15 Newton iterations, got %s" % its)
+    for k in ("kinetic_energy", "mean_shear_rate", "err_u_l2", "flow_rate"):
+        if not math.isfinite(s[k]):
+            fail("%s is not finite: %s" % (k, s[k]))
+    if not abs(s["plug_half_width"] - 0.9) <= 2.0 / 32:
+        fail("plug half-width expected within %g of 0.9, got %g" % (2.0 / 32, s["plug_half_width"]))
+
+
 def test_poiseuille_half():
     """Free slip: the half channel 0 <= y <= 1 with a free-slip symmetry plane
     at y = 0 (16 cells across) reproduces the Bingham profile: relative L2

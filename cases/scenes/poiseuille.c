@@ -1,9 +1,12 @@
-/* Steady Bingham plane Poiseuille flow (REFERENCES.md).
+/* Steady Bingham and Herschel-Bulkley plane Poiseuille flow (REFERENCES.md).
  * Channel |y| <= H, driven by a pressure gradient G = -dp/dx applied as a
  * body force; fully developed: no slip on the walls, v = 0 and zero normal
  * traction at inlet/outlet (so p = 0). Plug half-width y0 = tau0/G;
  *   y0 <= |y| <= H: u = G (H^2 - y^2)/(2 eta_p) - tau0 (H - |y|)/eta_p,
  *   plug:           u = G (H - y0)^2 / (2 eta_p).
+ * Herschel-Bulkley (tau0 + K ||gdot||^n), |y| >= y0:
+ *   u = n/(n+1) / (G K^(1/n)) [(G H - tau0)^((n+1)/n) - (G |y| - tau0)^((n+1)/n)],
+ * and the same expression at |y| = y0 in the plug (n = 1 is Bingham).
  * Options: -bn (= y0/H = tau0/(G H), default 0.3), -channel_length,
  * -half_channel (0 <= y <= H with free slip, the symmetry plane, at y = 0). */
 #include "common.h"
@@ -13,11 +16,19 @@ typedef struct {
   SlumpRheology rheo; /* the yield stress and viscosity in force after options */
 } PoiseuilleCtx;
 
-static PetscErrorCode BinghamParameters(SlumpRheology rheo, PetscReal *tau0, PetscReal *etap)
+/* tau0, K (or eta_p) and n (1 for Bingham) of the model in force. */
+static PetscErrorCode YieldParameters(SlumpRheology rheo, PetscReal *tau0, PetscReal *K, PetscReal *n)
 {
   PetscBool has;
   PetscFunctionBeginUser;
-  PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", etap));
+  PetscCall(SlumpRheologyHasParameter(rheo, "consistency", &has));
+  if (has) {
+    PetscCall(SlumpRheologyGetParameter(rheo, "consistency", K));
+    PetscCall(SlumpRheologyGetParameter(rheo, "n", n));
+  } else {
+    PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", K));
+    *n = 1.0;
+  }
   PetscCall(SlumpRheologyHasParameter(rheo, "yield_stress", &has));
   *tau0 = 0.0;
   if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", tau0));
@@ -27,12 +38,11 @@ static PetscErrorCode BinghamParameters(SlumpRheology rheo, PetscReal *tau0, Pet
 static PetscErrorCode ExactU(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
 {
   const PoiseuilleCtx *c = (const PoiseuilleCtx *)ctx;
-  PetscReal            tau0, etap;
-  PetscCall(BinghamParameters(c->rheo, &tau0, &etap));
-  const PetscReal y0 = tau0 / c->G, ay = PetscAbsReal(x[1]);
+  PetscReal            tau0, K, n;
+  PetscCall(YieldParameters(c->rheo, &tau0, &K, &n));
+  const PetscReal y0 = tau0 / c->G, ay = PetscMax(PetscAbsReal(x[1]), y0), e = (n + 1.0) / n;
   if (y0 >= c->H) u[0] = 0.0;
-  else if (ay <= y0) u[0] = c->G * (c->H - y0) * (c->H - y0) / (2 * etap);
-  else u[0] = c->G * (c->H * c->H - ay * ay) / (2 * etap) - tau0 * (c->H - ay) / etap;
+  else u[0] = n / (n + 1.0) / (c->G * PetscPowReal(K, 1.0 / n)) * (PetscPowReal(c->G * c->H - tau0, e) - PetscPowReal(c->G * ay - tau0, e));
   u[1] = 0.0;
   return 0;
 }
@@ -47,9 +57,9 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
 {
   PoiseuilleCtx   *c = (PoiseuilleCtx *)scene->ctx;
   SlumpDiagnostics d;
-  PetscReal        tau0, etap;
+  PetscReal        tau0, K, n;
   PetscFunctionBeginUser;
-  PetscCall(BinghamParameters(c->rheo, &tau0, &etap));
+  PetscCall(YieldParameters(c->rheo, &tau0, &K, &n));
   PetscCall(SlumpProblemComputeDiagnostics(prob, t, X, &d));
   /* unyielded share of the channel = y0 / H */
   PetscCall(SlumpSceneAddResult(scene, "plug_half_width", (1.0 - d.yielded_fraction) * c->H));
