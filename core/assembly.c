@@ -386,16 +386,17 @@ PetscErrorCode SlumpAssembleIntegrals(SlumpProblem prob, PetscReal t, Vec locX, 
   PetscFunctionReturn(0);
 }
 
-/* Flux int u . n over the faces of `label` (outward normal), 3-point Gauss
-   on each edge, the velocity evaluated in the face's cell (collective). */
-PetscErrorCode SlumpAssembleBoundaryFlux(SlumpProblem prob, Vec locX, const char labelname[], PetscReal *flux)
+/* Over the faces of `label`: comp < 0: the flux int u . n (outward normal);
+   comp >= 0: int u_comp. Also returns the length. 3-point Gauss on each
+   edge, the velocity evaluated in the face's cell (collective). */
+PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const char labelname[], PetscInt comp, PetscReal *integral, PetscReal *length)
 {
   SlumpAssembly      a = prob->assembly;
   DMLabel            label;
   IS                 valIS;
   PetscFE            fe;
   const PetscScalar *xa;
-  PetscReal          Q = 0.0;
+  PetscReal          Q[2] = {0.0, 0.0};
   const PetscReal    gp[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, gw[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   PetscInt           fStart, fEnd, dim = a->dim, N = a->NbTot;
   PetscFunctionBeginUser;
@@ -456,7 +457,8 @@ PetscErrorCode SlumpAssembleBoundaryFlux(SlumpProblem prob, Vec locX, const char
             PetscReal u[2] = {0, 0};
             for (PetscInt b = 0; b < a->Nb[0]; ++b)
               for (PetscInt cc2 = 0; cc2 < 2; ++cc2) u[cc2] += T->T[0][(q * a->Nb[0] + b) * 2 + cc2] * PetscRealPart(xa[a->lidx[c * N + a->off[0] + b]]);
-            Q += 0.5 * len * gw[q] * (u[0] * nrm[0] + u[1] * nrm[1]);
+            Q[0] += 0.5 * len * gw[q] * (comp < 0 ? u[0] * nrm[0] + u[1] * nrm[1] : u[comp]);
+            Q[1] += 0.5 * len * gw[q];
           }
           PetscCall(PetscTabulationDestroy(&T));
         }
@@ -468,6 +470,8 @@ PetscErrorCode SlumpAssembleBoundaryFlux(SlumpProblem prob, Vec locX, const char
   }
   PetscCall(ISDestroy(&valIS));
   PetscCall(VecRestoreArrayRead(locX, &xa));
-  PetscCall(MPIU_Allreduce(&Q, flux, 1, MPIU_REAL, MPIU_SUM, prob->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, Q, 2, MPIU_REAL, MPIU_SUM, prob->comm));
+  *integral = Q[0];
+  if (length) *length = Q[1];
   PetscFunctionReturn(0);
 }

@@ -118,7 +118,7 @@ PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Ve
   d->flow_rate = 0.0;
   if (prob->flowRateLabel[0]) {
     PetscCall(SlumpProblemFillLocal(prob, t, X));
-    PetscCall(SlumpAssembleBoundaryFlux(prob, prob->locX, prob->flowRateLabel, &d->flow_rate));
+    PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, prob->flowRateLabel, -1, &d->flow_rate, NULL));
   }
   PetscFunctionReturn(0);
 }
@@ -151,5 +151,15 @@ PetscErrorCode SlumpProblemComputeErrors(SlumpProblem prob, PetscReal t, Vec X, 
   PetscCall(DMComputeL2FieldDiff(prob->dmDiag, t, zero, ctxs, Z, norm));
   PetscCall(DMRestoreGlobalVector(prob->dmDiag, &Z));
   if (!ex[1]) err[1] = norm[1] = -1.0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemComputeBoundaryMean(SlumpProblem prob, PetscReal t, Vec X, const char label[], PetscInt comp, PetscReal *mean)
+{
+  PetscReal integral, length;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, label, comp, &integral, &length));
+  *mean = length > 0 ? integral / length : 0.0;
   PetscFunctionReturn(0);
 }

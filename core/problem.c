@@ -141,11 +141,28 @@ PetscErrorCode SlumpProblemSetMomentumSource(SlumpProblem prob, PetscPointFunc f
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemSetSceneConstant(SlumpProblem prob, PetscInt i, PetscReal value)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(i >= 0 && i < 4, prob->comm, PETSC_ERR_ARG_OUTOFRANGE, "Scene constant index %" PetscInt_FMT " must lie in [0, 3]", i);
+  prob->sceneConst[i] = value;
+  if (prob->setup) PetscCall(SlumpProblemSetConstantsAll(prob));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemSetInitialVelocity(SlumpProblem prob, SlumpPointFn u0, void *ctx)
 {
   PetscFunctionBeginUser;
   prob->u0    = u0;
   prob->u0ctx = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetInitialPressure(SlumpProblem prob, SlumpPointFn p0, void *ctx)
+{
+  PetscFunctionBeginUser;
+  prob->p0    = p0;
+  prob->p0ctx = ctx;
   PetscFunctionReturn(0);
 }
 
@@ -408,6 +425,7 @@ PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
   prob->constants[SLUMP_C_GX]      = prob->g[0];
   prob->constants[SLUMP_C_GY]      = prob->g[1];
   prob->constants[SLUMP_C_JACMODE] = prob->jacmode;
+  for (PetscInt i = 0; i < 4; ++i) prob->constants[SLUMP_C_SCENE + i] = prob->sceneConst[i];
   PetscCall(SlumpRheologyGetConstants(prob->rheo, &n, &prob->constants[SLUMP_C_RHEO]));
   PetscCall(DMGetDS(prob->dm, &ds));
   PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
@@ -608,8 +626,8 @@ PetscErrorCode SlumpProblemGetDifferentialMarker(SlumpProblem prob, Vec id)
 
 PetscErrorCode SlumpProblemProjectInitialState(SlumpProblem prob, PetscReal t, Vec X)
 {
-  SlumpPointFn funcs[2] = {prob->u0 ? prob->u0 : ZeroFn, ZeroFn};
-  void        *ctxs[2]  = {prob->u0ctx, NULL};
+  SlumpPointFn funcs[2] = {prob->u0 ? prob->u0 : ZeroFn, prob->p0 ? prob->p0 : ZeroFn};
+  void        *ctxs[2]  = {prob->u0ctx, prob->p0ctx};
   PetscFunctionBeginUser;
   PetscCall(DMProjectFunction(prob->dm, t, funcs, ctxs, INSERT_ALL_VALUES, X));
   PetscFunctionReturn(0);

@@ -52,6 +52,7 @@ enum {
   SLUMP_C_GX      = 1, /* body force per unit mass, x                    */
   SLUMP_C_GY      = 2, /* body force per unit mass, y                    */
   SLUMP_C_JACMODE = 3, /* 0: full Jacobian; 1: [rho M, B^T; B, 0] only    */
+  SLUMP_C_SCENE   = 4, /* four values a scene's own kernels may use       */
   SLUMP_C_RHEO    = 8, /* first rheology parameter                       */
   SLUMP_C_RHEO_MAX = 16,
   SLUMP_C_NUM     = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX
@@ -75,7 +76,11 @@ PETSC_EXTERN PetscErrorCode SlumpProblemAddFreeSlipBC(SlumpProblem prob, const c
 PETSC_EXTERN PetscErrorCode SlumpProblemAddTractionBC(SlumpProblem prob, const char label[], SlumpTractionFn traction);
 /* Replace the momentum source (body force) by a scene's own pointwise term f0_u. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetMomentumSource(SlumpProblem prob, PetscPointFunc f0_u);
+/* Scene constant i (0..3), read by a scene's kernels as constants[SLUMP_C_SCENE + i]. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetSceneConstant(SlumpProblem prob, PetscInt i, PetscReal value);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetInitialVelocity(SlumpProblem prob, SlumpPointFn u0, void *ctx);
+/* Initial pressure (initial guess of steady solves; e.g. lithostatic). */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetInitialPressure(SlumpProblem prob, SlumpPointFn p0, void *ctx);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetExactSolution(SlumpProblem prob, SlumpPointFn u, SlumpPointFn p, void *ctx);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetExactSolution(SlumpProblem prob, SlumpPointFn *u, SlumpPointFn *p, void **ctx);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob);
@@ -117,6 +122,8 @@ PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, Pe
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean);
 /* Boundary over which the flow rate diagnostic integrates u . n. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetFlowRateBoundary(SlumpProblem prob, const char label[]);
+/* Mean of velocity component comp over the boundary `label` (collective). */
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeBoundaryMean(SlumpProblem prob, PetscReal t, Vec X, const char label[], PetscInt comp, PetscReal *mean);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetArea(SlumpProblem prob, PetscReal *area);
 /* L2 errors of velocity and pressure against the exact solution (if any). */
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeErrors(SlumpProblem prob, PetscReal t, Vec X, PetscReal err[2], PetscReal norm[2]);

@@ -27,14 +27,14 @@ struct _n_SlumpProblem {
   DM            dm;       /* solution: u (P2), p (P1), Dirichlet dofs constrained out */
   DM            dmDiag;   /* same fields, no constraints: diagnostics and projections */
   PetscInt      effects;
-  PetscReal     rho, g[2];
+  PetscReal     rho, g[2], sceneConst[4];
   PetscInt      velocityDegree, pressureDegree, quadOrder;
   SlumpRheology rheo;
   PetscInt      nbc;
   SlumpBC       bc[SLUMP_MAX_BC];
   PetscPointFunc momentumSource;
-  SlumpPointFn  u0, uex, pex;
-  void         *u0ctx, *exctx;
+  SlumpPointFn  u0, p0, uex, pex;
+  void         *u0ctx, *p0ctx, *exctx;
   char          flowRateLabel[64];
   PetscBool     setup, pressurePinned;
   PetscReal     area;
@@ -58,7 +58,7 @@ PETSC_INTERN PetscErrorCode SlumpAssemblyCreate(SlumpProblem);
 PETSC_INTERN PetscErrorCode SlumpAssemblyDestroy(SlumpAssembly *);
 PETSC_INTERN PetscErrorCode SlumpAssembleResidual(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, Vec locF);
 PETSC_INTERN PetscErrorCode SlumpAssembleJacobian(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat J);
-PETSC_INTERN PetscErrorCode SlumpAssembleBoundaryFlux(SlumpProblem, Vec locX, const char label[], PetscReal *flux);
+PETSC_INTERN PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem, Vec locX, const char label[], PetscInt comp, PetscReal *integral, PetscReal *length);
 PETSC_INTERN PetscErrorCode SlumpAssembleIntegrals(SlumpProblem, PetscReal t, Vec locX, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Fill prob->locX with X and the boundary values at t. */
 PETSC_INTERN PetscErrorCode SlumpProblemFillLocal(SlumpProblem, PetscReal t, Vec X);
