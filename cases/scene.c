@@ -17,6 +17,7 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_MMSStokes(SlumpScene, SlumpProblem,
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CouetteStartup(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_VerticalChute(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Bagnold(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Duct(SlumpScene, SlumpProblem, MPI_Comm);
 
 PetscErrorCode SlumpSceneRegister(const char name[], const char description[], SlumpSceneCreateFn create)
 {
@@ -38,6 +39,7 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("couette_startup", "Newtonian Couette start-up, top plate accelerating as 1 - exp(-t/tau); exact series solution", SlumpSceneCreate_CouetteStartup));
   PetscCall(SlumpSceneRegister("bagnold", "mu(I) layer on a rough inclined plane (Chauchat & Medale); analytic Bagnold profile", SlumpSceneCreate_Bagnold));
   PetscCall(SlumpSceneRegister("vertical_chute", "mu(I) flow between rough vertical walls at uniform pressure; analytic profile and plug", SlumpSceneCreate_VerticalChute));
+  PetscCall(SlumpSceneRegister("duct", "anti-plane Bingham flow in a square duct (Mosolov problem); flow threshold Bn_c = 1/(2 + sqrt(pi))", SlumpSceneCreate_Duct));
   PetscCall(SlumpSceneRegister("mms_stokes", "manufactured Stokes solution on the unit square (Dirichlet + traction); spatial orders", SlumpSceneCreate_MMSStokes));
   PetscFunctionReturn(0);
 }

@@ -7,21 +7,26 @@
 static void KineticEnergy(SLUMP_PW_ARGS, PetscScalar f[])
 {
   PetscScalar s = 0.0;
-  for (PetscInt d = 0; d < dim; ++d) s += u[uOff[0] + d] * u[uOff[0] + d];
+  for (PetscInt d = 0; d < uOff[1] - uOff[0]; ++d) s += u[uOff[0] + d] * u[uOff[0] + d];
   f[0] = 0.5 * PetscRealPart(constants[SLUMP_C_RHO]) * s;
 }
 
 static void ShearRate(SLUMP_PW_ARGS, PetscScalar f[])
 {
-  PetscScalar gd[9];
-  f[0] = SlumpPwStrainRate(dim, u_x, gd);
+  PetscReal p;
+  f[0] = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
 }
 
 static void ShearRateSquared(SLUMP_PW_ARGS, PetscScalar f[])
 {
-  PetscScalar gd[9];
-  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd);
-  f[0]          = g * g;
+  PetscReal p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+  f[0] = g * g;
+}
+
+/* anti-plane flow rate: int w */
+static void OutOfPlaneVelocity(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  f[0] = u[uOff[0]];
 }
 
 
@@ -116,7 +121,11 @@ PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Ve
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
   PetscCall(MaxShearRate(prob, &d->max_shear_rate));
   d->flow_rate = 0.0;
-  if (prob->flowRateLabel[0]) {
+  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+    PetscPointFunc obj[1] = {OutOfPlaneVelocity};
+    PetscCall(SlumpProblemFillLocal(prob, t, X));
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 1, obj, &d->flow_rate));
+  } else if (prob->flowRateLabel[0]) {
     PetscCall(SlumpProblemFillLocal(prob, t, X));
     PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, prob->flowRateLabel, -1, &d->flow_rate, NULL));
   }
@@ -134,7 +143,10 @@ PetscErrorCode SlumpProblemComputeErrors(SlumpProblem prob, PetscReal t, Vec X, 
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
   ex[0] = prob->uex;
   ex[1] = prob->pex;
-  if (!ex[1]) {
+  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+    PetscCall(DMComputeL2FieldDiff(prob->dmDiag, t, ex, ctxs, prob->diagX, err));
+    err[1] = -1.0;
+  } else if (!ex[1]) {
     /* no pressure reference: compare pressure with itself */
     PetscReal e2[2];
     SlumpPointFn f2[2] = {prob->uex, prob->uex};
@@ -150,7 +162,7 @@ PetscErrorCode SlumpProblemComputeErrors(SlumpProblem prob, PetscReal t, Vec X, 
   zero[1] = ex[1] ? ex[1] : ex[0];
   PetscCall(DMComputeL2FieldDiff(prob->dmDiag, t, zero, ctxs, Z, norm));
   PetscCall(DMRestoreGlobalVector(prob->dmDiag, &Z));
-  if (!ex[1]) err[1] = norm[1] = -1.0;
+  if (!ex[1] || prob->formulation == SLUMP_FORMULATION_ANTIPLANE) err[1] = norm[1] = -1.0;
   PetscFunctionReturn(0);
 }
 

@@ -9,6 +9,8 @@
 
 struct _n_SlumpFieldWriter {
   SlumpProblem prob;
+  PetscInt     nf, nc[4];
+  const char  *names[4];
   DM           dmOut;
   Vec          Xout;
   char         dir[PETSC_MAX_PATH_LEN];
@@ -43,7 +45,7 @@ PetscErrorCode SlumpMakeDirectory(MPI_Comm comm, const char dir[])
 
 static void CopyVelocity(SLUMP_PW_ARGS, PetscScalar f[])
 {
-  for (PetscInt d = 0; d < dim; ++d) f[d] = u[uOff[0] + d];
+  for (PetscInt d = 0; d < uOff[1] - uOff[0]; ++d) f[d] = u[uOff[0] + d];
 }
 
 static void CopyPressure(SLUMP_PW_ARGS, PetscScalar f[])
@@ -54,18 +56,32 @@ static void CopyPressure(SLUMP_PW_ARGS, PetscScalar f[])
 PetscErrorCode SlumpFieldWriterCreate(SlumpProblem prob, const char dir[], SlumpFieldWriter *writer)
 {
   SlumpFieldWriter w;
-  const char      *names[4] = {"velocity", "pressure", "shear_rate", "viscosity"};
   PetscInt         dim, cStart, cEnd, vStart, vEnd;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&w));
   w->prob = prob;
   PetscCall(PetscStrncpy(w->dir, dir, sizeof(w->dir)));
   PetscCall(DMGetDimension(prob->dm, &dim));
+  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+    w->nf       = 3;
+    w->names[0] = "velocity";
+    w->names[1] = "shear_rate";
+    w->names[2] = "viscosity";
+    w->nc[0] = w->nc[1] = w->nc[2] = 1;
+  } else {
+    w->nf       = 4;
+    w->names[0] = "velocity";
+    w->names[1] = "pressure";
+    w->names[2] = "shear_rate";
+    w->names[3] = "viscosity";
+    w->nc[0]    = dim;
+    w->nc[1] = w->nc[2] = w->nc[3] = 1;
+  }
   PetscCall(DMClone(prob->dm, &w->dmOut));
-  for (PetscInt f = 0; f < 4; ++f) {
+  for (PetscInt f = 0; f < w->nf; ++f) {
     PetscFE fe;
-    PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, f == 0 ? dim : 1, PETSC_TRUE, 1, prob->quadOrder, &fe));
-    PetscCall(PetscObjectSetName((PetscObject)fe, names[f]));
+    PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, w->nc[f], PETSC_TRUE, 1, prob->quadOrder, &fe));
+    PetscCall(PetscObjectSetName((PetscObject)fe, w->names[f]));
     PetscCall(DMSetField(w->dmOut, f, NULL, (PetscObject)fe));
     PetscCall(PetscFEDestroy(&fe));
   }
@@ -95,7 +111,6 @@ static PetscErrorCode WriteXdmf(SlumpFieldWriter w)
   FILE       *fp;
   PetscMPIInt rank;
   PetscInt    dim;
-  const char *names[4] = {"velocity", "pressure", "shear_rate", "viscosity"};
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(w->prob->comm, &rank));
   if (rank) PetscFunctionReturn(0);
@@ -110,17 +125,18 @@ static PetscErrorCode WriteXdmf(SlumpFieldWriter w)
     fprintf(fp, "    <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n", (int)w->ncells);
     fprintf(fp, "     <DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Format=\"HDF\">fields.h5:/viz/topology/cells</DataItem>\n    </Topology>\n", (int)w->ncells);
     fprintf(fp, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n    </Geometry>\n", (int)w->nverts, (int)dim);
-    for (PetscInt f = 0; f < 4; ++f) {
-      const PetscInt nc = f == 0 ? dim : 1;
-      fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", names[f], nc > 1 ? "Vector" : "Scalar");
+    for (PetscInt f = 0; f < w->nf; ++f) {
+      const PetscInt nc = w->nc[f];
+      const char    *name = w->names[f];
+      fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", name, nc > 1 ? "Vector" : "Scalar");
       if (nc > 1) {
         fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d %d\" Type=\"HyperSlab\">\n", (int)w->nverts, (int)nc);
         fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%d 0 0 1 1 1 1 %d %d</DataItem>\n", (int)k, (int)w->nverts, (int)nc);
-        fprintf(fp, "      <DataItem Dimensions=\"%d %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, (int)nc, names[f]);
+        fprintf(fp, "      <DataItem Dimensions=\"%d %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, (int)nc, name);
       } else {
         fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d\" Type=\"HyperSlab\">\n", (int)w->nverts);
         fprintf(fp, "      <DataItem Dimensions=\"3 2\" Format=\"XML\">%d 0 1 1 1 %d</DataItem>\n", (int)k, (int)w->nverts);
-        fprintf(fp, "      <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, names[f]);
+        fprintf(fp, "      <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, name);
       }
       fprintf(fp, "     </DataItem>\n    </Attribute>\n");
     }
@@ -141,10 +157,16 @@ PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
   char                   path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
-  funcs[0] = CopyVelocity;
-  funcs[1] = CopyPressure;
-  funcs[2] = pw.shear_rate;
-  funcs[3] = pw.eta;
+  if (w->nf == 3) {
+    funcs[0] = CopyVelocity;
+    funcs[1] = pw.shear_rate;
+    funcs[2] = pw.eta;
+  } else {
+    funcs[0] = CopyVelocity;
+    funcs[1] = CopyPressure;
+    funcs[2] = pw.shear_rate;
+    funcs[3] = pw.eta;
+  }
   PetscCall(DMGetDS(w->dmOut, &ds));
   PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));

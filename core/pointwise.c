@@ -88,3 +88,37 @@ void SlumpPwContinuityG1(SLUMP_PWJ_ARGS, PetscScalar g1[])
   for (PetscInt e = 0; e < dim; ++e)
     for (PetscInt d = 0; d < dim; ++d) g1[e * dim + d] = (e == d) ? -1.0 : 0.0;
 }
+
+/* Anti-plane momentum: rho w_t - rho G (G: the body force's x component). */
+static void f0_w_none(SLUMP_PW_ARGS, PetscScalar f0[])
+{
+  f0[0] = 0.0;
+}
+static void f0_w_I(SLUMP_PW_ARGS, PetscScalar f0[])
+{
+  f0[0] = PetscRealPart(constants[SLUMP_C_RHO]) * u_t[0];
+}
+static void f0_w_B(SLUMP_PW_ARGS, PetscScalar f0[])
+{
+  f0[0] = -PetscRealPart(constants[SLUMP_C_RHO]) * constants[SLUMP_C_GX];
+}
+static void f0_w_IB(SLUMP_PW_ARGS, PetscScalar f0[])
+{
+  f0[0] = PetscRealPart(constants[SLUMP_C_RHO]) * (u_t[0] - constants[SLUMP_C_GX]);
+}
+static void g0_ww_I(SLUMP_PWJ_ARGS, PetscScalar g0[])
+{
+  g0[0] = PetscRealPart(constants[SLUMP_C_RHO]) * u_tShift;
+}
+
+PetscPointFunc SlumpPwSelectAntiPlaneF0(PetscInt e)
+{
+  const PetscBool in = (e & SLUMP_EFFECT_INERTIA) ? PETSC_TRUE : PETSC_FALSE, bf = (e & SLUMP_EFFECT_BODY_FORCE) ? PETSC_TRUE : PETSC_FALSE;
+  if (in) return bf ? f0_w_IB : f0_w_I;
+  return bf ? f0_w_B : f0_w_none;
+}
+
+PetscPointJac SlumpPwSelectAntiPlaneG0(PetscInt e)
+{
+  return (e & SLUMP_EFFECT_INERTIA) ? g0_ww_I : NULL;
+}

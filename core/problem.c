@@ -48,6 +48,20 @@ PetscErrorCode SlumpProblemSetMesh(SlumpProblem prob, DM mesh)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemSetFormulation(SlumpProblem prob, SlumpFormulation f)
+{
+  PetscFunctionBeginUser;
+  prob->formulation = f;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetFormulation(SlumpProblem prob, SlumpFormulation *f)
+{
+  PetscFunctionBeginUser;
+  *f = prob->formulation;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemSetEffects(SlumpProblem prob, PetscInt effects)
 {
   PetscFunctionBeginUser;
@@ -388,6 +402,12 @@ PetscErrorCode SlumpProblemSetPointwise(SlumpProblem prob, PetscDS ds)
   SlumpRheologyPointwise pw;
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+    PetscCheck(!(prob->effects & SLUMP_EFFECT_CONVECTION), prob->comm, PETSC_ERR_SUP, "Convection does not act on an anti-plane flow");
+    PetscCall(PetscDSSetResidual(ds, 0, prob->momentumSource ? prob->momentumSource : SlumpPwSelectAntiPlaneF0(prob->effects), pw.ap_f1_u));
+    PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectAntiPlaneG0(prob->effects), NULL, NULL, pw.ap_g3_uu));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscDSSetResidual(ds, 0, prob->momentumSource ? prob->momentumSource : SlumpPwSelectMomentumF0(prob->effects), pw.f1_u));
   PetscCall(PetscDSSetResidual(ds, 1, SlumpPwContinuityF0, NULL));
   PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectG0(prob->effects), SlumpPwSelectG1(prob->effects), NULL, pw.g3_uu));
@@ -402,8 +422,14 @@ static PetscErrorCode CreateFields(SlumpProblem prob, DM dm)
   PetscInt dim;
   PetscFunctionBeginUser;
   PetscCall(DMGetDimension(dm, &dim));
-  PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, dim, PETSC_TRUE, prob->velocityDegree, prob->quadOrder, &fe[0]));
+  PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, prob->formulation == SLUMP_FORMULATION_ANTIPLANE ? 1 : dim, PETSC_TRUE, prob->velocityDegree, prob->quadOrder, &fe[0]));
   PetscCall(PetscObjectSetName((PetscObject)fe[0], "velocity"));
+  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+    PetscCall(DMSetField(dm, 0, NULL, (PetscObject)fe[0]));
+    PetscCall(DMCreateDS(dm));
+    PetscCall(PetscFEDestroy(&fe[0]));
+    PetscFunctionReturn(0);
+  }
   PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, 1, PETSC_TRUE, prob->pressureDegree, prob->quadOrder, &fe[1]));
   PetscCall(PetscFECopyQuadrature(fe[0], fe[1]));
   PetscCall(PetscObjectSetName((PetscObject)fe[1], "pressure"));
@@ -485,7 +511,7 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
   }
   {
     PetscBool determined = PETSC_TRUE;
-    PetscCall(PressureDetermined(prob, &determined));
+    if (prob->formulation == SLUMP_FORMULATION_PLANE) PetscCall(PressureDetermined(prob, &determined));
     prob->pressurePinned = determined ? PETSC_FALSE : PETSC_TRUE;
     if (prob->pressurePinned) PetscCall(PinPressure(prob));
   }
@@ -553,13 +579,15 @@ PetscErrorCode SlumpProblemView(SlumpProblem prob, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemGetFieldIS(prob, &isu, &isp));
   PetscCall(ISGetSize(isu, &Nu));
-  PetscCall(ISGetSize(isp, &N));
+  N = 0;
+  if (isp) PetscCall(ISGetSize(isp, &N));
   PetscCall(ISDestroy(&isu));
   PetscCall(ISDestroy(&isp));
   PetscCall(DMPlexGetHeightStratum(prob->dm, 0, &cStart, &cEnd));
   nc = cEnd - cStart;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, prob->comm));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; P%" PetscInt_FMT "/P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " velocity, %" PetscInt_FMT " pressure\n", nc, prob->velocityDegree, prob->pressureDegree, Nu, N));
+  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; anti-plane P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " out-of-plane velocity\n", nc, prob->velocityDegree, Nu));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; P%" PetscInt_FMT "/P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " velocity, %" PetscInt_FMT " pressure\n", nc, prob->velocityDegree, prob->pressureDegree, Nu, N));
   PetscCall(PetscViewerASCIIPrintf(viewer, "effects:"));
   if (!prob->effects) PetscCall(PetscViewerASCIIPrintf(viewer, " none (steady Stokes: no differential unknowns)"));
   for (PetscInt e = 0; e < 3; ++e)
@@ -602,7 +630,7 @@ PetscErrorCode SlumpProblemGetFieldIS(SlumpProblem prob, IS *isu, IS *isp)
   PetscFunctionBeginUser;
   PetscCall(DMCreateFieldIS(prob->dm, &nf, NULL, &is));
   *isu = is[0];
-  *isp = is[1];
+  *isp = nf > 1 ? is[1] : NULL;
   PetscCall(PetscFree(is));
   PetscFunctionReturn(0);
 }
@@ -627,6 +655,7 @@ PetscErrorCode SlumpProblemGetDifferentialMarker(SlumpProblem prob, Vec id)
 PetscErrorCode SlumpProblemProjectInitialState(SlumpProblem prob, PetscReal t, Vec X)
 {
   SlumpPointFn funcs[2] = {prob->u0 ? prob->u0 : ZeroFn, prob->p0 ? prob->p0 : ZeroFn};
+  /* anti-plane: one field; DMProjectFunction reads funcs[0] only */
   void        *ctxs[2]  = {prob->u0ctx, prob->p0ctx};
   PetscFunctionBeginUser;
   PetscCall(DMProjectFunction(prob->dm, t, funcs, ctxs, INSERT_ALL_VALUES, X));

@@ -58,10 +58,19 @@ enum {
   SLUMP_C_NUM     = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX
 };
 
+/* ----------------------------------------------------------- formulation */
+/* plane: velocity u (P2, dim components) and pressure p (P1);
+   antiplane: one out-of-plane velocity w(x, y) (P2), u = (0, 0, w), with
+   ||gdot|| = |grad w| and no pressure (ducts: the Mosolov problem). The body
+   force's x component drives w. */
+typedef enum { SLUMP_FORMULATION_PLANE, SLUMP_FORMULATION_ANTIPLANE } SlumpFormulation;
+
 /* --------------------------------------------------------------- problem */
 PETSC_EXTERN PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob);
 PETSC_EXTERN PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetMesh(SlumpProblem prob, DM mesh);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetFormulation(SlumpProblem prob, SlumpFormulation f);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetFormulation(SlumpProblem prob, SlumpFormulation *f);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetEffects(SlumpProblem prob, PetscInt effects);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetEffects(SlumpProblem prob, PetscInt *effects);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetDensity(SlumpProblem prob, PetscReal rho);
@@ -92,7 +101,8 @@ PETSC_EXTERN PetscErrorCode SlumpProblemUpdateConstants(SlumpProblem prob);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetDM(SlumpProblem prob, DM *dm);
 PETSC_EXTERN PetscErrorCode SlumpProblemCreateVector(SlumpProblem prob, Vec *X);
 PETSC_EXTERN PetscErrorCode SlumpProblemCreateMatrix(SlumpProblem prob, Mat *J);
-/* Index sets of the velocity and pressure unknowns in the global vector. */
+/* Index sets of the velocity and pressure unknowns in the global vector
+   (isp = NULL in the anti-plane formulation). */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetFieldIS(SlumpProblem prob, IS *isu, IS *isp);
 /* Differential (1) / algebraic (0) marker of every unknown. */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetDifferentialMarker(SlumpProblem prob, Vec id);
@@ -115,7 +125,7 @@ typedef struct {
   PetscReal l2_shear_rate;      /* (int ||gdot||^2)^(1/2)                     */
   PetscReal dissipation;        /* int tau : D = int eta ||gdot||^2           */
   PetscReal yielded_fraction;   /* |{||tau|| > tau_y}| / |Omega| (1 if no yield stress) */
-  PetscReal flow_rate;          /* int u . n over the flow-rate boundary, if any */
+  PetscReal flow_rate;          /* int u . n over the flow-rate boundary, if any; anti-plane: int w */
 } SlumpDiagnostics;
 
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d);

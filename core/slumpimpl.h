@@ -27,6 +27,7 @@ struct _n_SlumpProblem {
   DM            dm;       /* solution: u (P2), p (P1), Dirichlet dofs constrained out */
   DM            dmDiag;   /* same fields, no constraints: diagnostics and projections */
   PetscInt      effects;
+  SlumpFormulation formulation;
   PetscReal     rho, g[2], sceneConst[4];
   PetscInt      velocityDegree, pressureDegree, quadOrder;
   SlumpRheology rheo;
@@ -70,5 +71,7 @@ PETSC_INTERN PetscErrorCode SlumpProblemSetPointwise(SlumpProblem, PetscDS ds);
 PETSC_INTERN PetscPointFunc SlumpPwSelectMomentumF0(PetscInt effects);
 PETSC_INTERN PetscPointJac  SlumpPwSelectG0(PetscInt effects);
 PETSC_INTERN PetscPointJac  SlumpPwSelectG1(PetscInt effects);
+PETSC_INTERN PetscPointFunc SlumpPwSelectAntiPlaneF0(PetscInt effects);
+PETSC_INTERN PetscPointJac  SlumpPwSelectAntiPlaneG0(PetscInt effects);
 PETSC_INTERN void           SlumpPwContinuityF0(SLUMP_PW_ARGS, PetscScalar f0[]);
 PETSC_INTERN void           SlumpPwContinuityG1(SLUMP_PWJ_ARGS, PetscScalar g1[]);

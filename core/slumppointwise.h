@@ -31,6 +31,44 @@ static inline PetscReal SlumpPwStrainRate(PetscInt dim, const PetscScalar u_x[],
   return PetscSqrtReal(0.5 * s);
 }
 
+/* Either formulation: plane (u vector, p) or anti-plane (one scalar w with
+   ||gdot|| = |grad w|, no pressure). Returns ||gdot|| and the pressure (0). */
+static inline PetscReal SlumpPwShearRateAny(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscScalar u[], const PetscScalar u_x[], PetscReal *p)
+{
+  if (uOff[1] - uOff[0] == 1) { /* anti-plane */
+    PetscReal s = 0.0;
+    for (PetscInt d = 0; d < dim; ++d) s += PetscRealPart(u_x[d] * u_x[d]);
+    *p = 0.0;
+    return PetscSqrtReal(s);
+  } else {
+    PetscScalar gd[9];
+    *p = Nf > 1 ? PetscRealPart(u[uOff[1]]) : 0.0;
+    return SlumpPwStrainRate(dim, u_x, gd);
+  }
+}
+
+/* Anti-plane: f1 = eta grad w; g3 = eta I + eta' grad w grad w^T / |grad w|. */
+static inline void SlumpPwF1AntiPlane(PetscInt dim, const PetscScalar w_x[], const PetscReal x[], const PetscScalar prm[], SlumpViscosityKernel k, PetscScalar f1[])
+{
+  PetscReal s = 0.0, eta, de_dg, de_dp, ty;
+  for (PetscInt d = 0; d < dim; ++d) s += PetscRealPart(w_x[d] * w_x[d]);
+  k(prm, PetscSqrtReal(s), 0.0, x, &eta, &de_dg, &de_dp, &ty);
+  for (PetscInt d = 0; d < dim; ++d) f1[d] = eta * w_x[d];
+}
+
+static inline void SlumpPwG3AntiPlane(PetscInt dim, const PetscScalar w_x[], const PetscReal x[], const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g3[])
+{
+  PetscReal s = 0.0, g, eta, de_dg, de_dp, ty;
+  for (PetscInt d = 0; d < dim * dim; ++d) g3[d] = 0.0;
+  if (jacmode == 1) return;
+  for (PetscInt d = 0; d < dim; ++d) s += PetscRealPart(w_x[d] * w_x[d]);
+  g = PetscSqrtReal(s);
+  k(prm, g, 0.0, x, &eta, &de_dg, &de_dp, &ty);
+  const PetscReal r = g > SLUMP_GDOT_TINY ? de_dg / g : 0.0;
+  for (PetscInt d = 0; d < dim; ++d)
+    for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = r * w_x[d] * w_x[e] + (d == e ? eta : 0.0);
+}
+
 static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], SlumpViscosityKernel k, PetscScalar f1[])
 {
   PetscScalar gd[9];
@@ -90,30 +128,35 @@ static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar 
   { \
     SlumpPwG2(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g2); \
   } \
+  static void NAME##_ap_f1_u(SLUMP_PW_ARGS, PetscScalar f1[]) \
+  { \
+    SlumpPwF1AntiPlane(dim, u_x, x, &constants[SLUMP_C_RHEO], KERNEL, f1); \
+  } \
+  static void NAME##_ap_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
+  { \
+    SlumpPwG3AntiPlane(dim, u_x, x, &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g3); \
+  } \
   static void NAME##_eta(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
-    PetscScalar gd[9]; \
-    PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
-    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), x, &eta, &d1_, &d2_, &ty); \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     f[0] = eta; \
   } \
   static void NAME##_shear_rate(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
-    PetscScalar gd[9]; \
-    f[0] = SlumpPwStrainRate(dim, u_x, gd); \
+    PetscReal p; \
+    f[0] = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
   } \
   static void NAME##_dissipation(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
-    PetscScalar gd[9]; \
-    PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
-    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), x, &eta, &d1_, &d2_, &ty); \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     f[0] = eta * g * g; \
   } \
   static void NAME##_yielded(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
-    PetscScalar gd[9]; \
-    PetscReal   eta, d1_, d2_, ty, g = SlumpPwStrainRate(dim, u_x, gd); \
-    KERNEL(&constants[SLUMP_C_RHEO], g, PetscRealPart(u[uOff[1]]), x, &eta, &d1_, &d2_, &ty); \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     f[0] = (eta * g > ty) ? 1.0 : 0.0; \
   } \
-  static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded};
+  static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded, NAME##_ap_f1_u, NAME##_ap_g3_uu};

@@ -60,5 +60,7 @@ typedef struct {
   PetscPointFunc shear_rate;  /* ||gdot|| (projection)              */
   PetscPointFunc diss_yield;  /* objective pair, see diagnostics.c  */
   PetscPointFunc yielded;     /* 1 where ||tau|| > tau_y            */
+  PetscPointFunc ap_f1_u;     /* anti-plane: eta grad w             */
+  PetscPointJac  ap_g3_uu;    /* anti-plane: d f1 / d grad w        */
 } SlumpRheologyPointwise;
 PETSC_EXTERN PetscErrorCode SlumpRheologyGetPointwise(SlumpRheology rheo, SlumpRheologyPointwise *pw);

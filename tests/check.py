@@ -311,6 +311,56 @@ def test_vertical_chute():
         fail("plug half-width expected within %g of %g, got %g" % (28.0 / 32, s["plug_half_width_exact"], s["plug_half_width"]))
 
 
+def test_duct():
+    """Anti-plane Bingham flow in a square duct (Mosolov problem), 16 x 16
+    cells, Papanastasiou m = 1e5 (continuation from 1e2).
+    Newtonian: flow rate within 1e-4 of the series value 0.035144.
+    Bingham: the flow rate decreases and the plug area grows with Bn; the
+    flow threshold Bn_c = 1/(2 + sqrt(pi)) = 0.26508 (Cheeger constant of the
+    square) is bracketed: at Bn = 0.25 (6 % below) Q/Q_newtonian > 1e-3 and
+    the plug covers < 80 % of the duct; at Bn = 0.28 (6 % above)
+    Q/Q_newtonian < 1e-3 (regularised creep) and the plug covers > 99 %."""
+    w = work("duct")
+    d = os.path.join(w, "newtonian")
+    run("duct", ["-rheology_type", "newtonian", "-output_fields", "0"], d)
+    s = summary(d)
+    rel = abs(s["flow_rate"] - s["flow_rate_newtonian"]) / s["flow_rate_newtonian"]
+    print("Newtonian flow rate %.7f, series %.7f (rel diff %.1e)" % (s["flow_rate"], s["flow_rate_newtonian"], rel))
+    if not rel <= 1e-4:
+        fail("Newtonian flow rate expected within 1e-4 of the series, got %g" % rel)
+    qn = s["flow_rate_newtonian"]
+    prev = None
+    res = {}
+    for bn in (0.1, 0.2, 0.25, 0.28, 0.5):
+        d = os.path.join(w, "bn%g" % bn)
+        run("duct", ["-bn", str(bn), "-rheology_papanastasiou_m", "1e5", "-steady_continuation_start", "1e2", "-output_fields", "0"], d)
+        s = summary(d)
+        res[bn] = s
+        print("Bn %.2f: Q/Q_newtonian %.3e, plug area %.4f (Bn_c %.5f)" % (bn, s["flow_rate"] / qn, s["plug_area"], s["bn_critical"]))
+        if prev is not None and not (s["flow_rate"] < prev["flow_rate"] and s["plug_area"] >= prev["plug_area"]):
+            fail("flow rate must fall and plug area grow with Bn (Bn %g)" % bn)
+        prev = s
+    if not (res[0.25]["flow_rate"] / qn > 1e-3 and res[0.25]["plug_area"] < 0.8):
+        fail("Bn = 0.25 (below Bn_c) should flow: Q/Qn %g, plug area %g" % (res[0.25]["flow_rate"] / qn, res[0.25]["plug_area"]))
+    if not (res[0.28]["flow_rate"] / qn < 1e-3 and res[0.28]["plug_area"] > 0.99):
+        fail("Bn = 0.28 (above Bn_c) should be arrested: Q/Qn %g, plug area %g" % (res[0.28]["flow_rate"] / qn, res[0.28]["plug_area"]))
+
+
+def test_stability_duct_bn1():
+    """Hard case: the duct at Bn = 1.0 (far beyond the threshold), Papanastasiou
+    m = 1e5, continuation from 1e2: every step converges within 15 Newton
+    iterations (budget), outputs finite, the whole duct unyielded."""
+    d = work("stability_duct")
+    p = run("duct", ["-bn", "1.0", "-rheology_papanastasiou_m", "1e5", "-steady_continuation_start", "1e2", "-output_fields", "0"], d)
+    its = [int(l.split("Newton")[1].split()[0]) for l in p.stdout.splitlines() if l.startswith("steady:")]
+    s = summary(d)
+    print("Newton iterations per continuation step %s; plug area %.4f; flow rate %.3e" % (its, s["plug_area"], s["flow_rate"]))
+    if len(its) != 4 or max(its) > 15:
+        fail("expected 4 continuation steps of <= 15 Newton iterations, got %s" % its)
+    if not (math.isfinite(s["flow_rate"]) and s["plug_area"] > 0.999):
+        fail("expected a finite creep flow rate and a plug covering the duct, got %g and %g" % (s["flow_rate"], s["plug_area"]))
+
+
 def test_stability_bagnold_lambda1e8():
     """Hard case: mu(I) Bagnold with lambda_r = 1e-8 (vanishing pressure at the
     free surface), continuation from 1e-1: every step converges within 10

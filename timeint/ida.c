@@ -54,15 +54,19 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
   KSPConvergedReason reason;
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemGetFieldIS(prob, &isu, &isp));
-  PetscCall(VecGetSubVector(X, isp, &sub));
-  PetscCall(VecZeroEntries(sub));
-  PetscCall(VecRestoreSubVector(X, isp, &sub));
+  if (isp) {
+    PetscCall(VecGetSubVector(X, isp, &sub));
+    PetscCall(VecZeroEntries(sub));
+    PetscCall(VecRestoreSubVector(X, isp, &sub));
+  }
   PetscCall(VecDuplicate(X, &F));
   PetscCall(VecDuplicate(X, &W));
   PetscCall(SlumpProblemResidual(prob, t, X, NULL, F));
-  PetscCall(VecGetSubVector(F, isp, &sub));
-  PetscCall(VecZeroEntries(sub));
-  PetscCall(VecRestoreSubVector(F, isp, &sub));
+  if (isp) {
+    PetscCall(VecGetSubVector(F, isp, &sub));
+    PetscCall(VecZeroEntries(sub));
+    PetscCall(VecRestoreSubVector(F, isp, &sub));
+  }
   PetscCall(VecScale(F, -1.0));
   PetscCall(SlumpProblemCreateMatrix(prob, &J));
   PetscCall(SlumpProblemInitJacobian(prob, t, X, J));
@@ -80,12 +84,14 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
   PetscCall(KSPGetConvergedReason(ksp, &reason));
   PetscCheck(reason > 0, PetscObjectComm((PetscObject)X), PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed (KSP reason %s)", KSPConvergedReasons[reason]);
   /* X_p = w_p, Xdot = (w_u, 0) */
-  PetscCall(VecGetSubVector(X, isp, &sub));
-  PetscCall(VecGetSubVector(W, isp, &subw));
-  PetscCall(VecCopy(subw, sub));
-  PetscCall(VecZeroEntries(subw));
-  PetscCall(VecRestoreSubVector(W, isp, &subw));
-  PetscCall(VecRestoreSubVector(X, isp, &sub));
+  if (isp) {
+    PetscCall(VecGetSubVector(X, isp, &sub));
+    PetscCall(VecGetSubVector(W, isp, &subw));
+    PetscCall(VecCopy(subw, sub));
+    PetscCall(VecZeroEntries(subw));
+    PetscCall(VecRestoreSubVector(W, isp, &subw));
+    PetscCall(VecRestoreSubVector(X, isp, &sub));
+  }
   PetscCall(VecCopy(W, Xdot));
   PetscCall(KSPDestroy(&ksp));
   PetscCall(MatDestroy(&J));
