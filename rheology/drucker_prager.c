@@ -56,23 +56,12 @@ SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoSimple, LithoSimpleKernel)
 SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoBercovier, LithoBercovierKernel)
 SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoPapanastasiou, LithoPapanastasiouKernel)
 
-static PetscErrorCode AddRegParameter(SlumpRheology rheo, SlumpRegKind kind)
-{
-  PetscFunctionBeginUser;
-  rheo->ireg               = rheo->nparam;
-  rheo->reg_larger_stiffer = kind == SLUMP_REG_PAPANASTASIOU ? PETSC_TRUE : PETSC_FALSE;
-  if (kind == SLUMP_REG_PAPANASTASIOU) PetscCall(SlumpRheologyAddParameter(rheo, "m", "-rheology_papanastasiou_m", "Papanastasiou exponent m", 1e3, 0.0, PETSC_TRUE));
-  else if (kind == SLUMP_REG_BERCOVIER) PetscCall(SlumpRheologyAddParameter(rheo, "eps", "-rheology_bercovier_eps", "Bercovier-Engelman epsilon", 1e-3, 0.0, PETSC_TRUE));
-  else PetscCall(SlumpRheologyAddParameter(rheo, "eps", "-rheology_simple_eps", "Simple regularisation epsilon", 1e-3, 0.0, PETSC_TRUE));
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode DPCommon(SlumpRheology rheo, SlumpRegKind kind)
 {
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyAddParameter(rheo, "viscosity", "-rheology_viscosity", "Viscous part eta_p", 1.0, 0.0, PETSC_FALSE));
   PetscCall(SlumpRheologyAddParameter(rheo, "mu", "-rheology_dp_mu", "Friction coefficient mu (tan of the friction angle)", 0.5, 0.0, PETSC_FALSE));
-  PetscCall(AddRegParameter(rheo, kind));
+  PetscCall(SlumpRheologyAddRegularisation(rheo, kind));
   PetscCall(SlumpRheologyAddParameter(rheo, "p_reg", "-rheology_pressure_reg", "Pressure regularisation d of (p + sqrt(p^2 + d^2))/2 (0: max(p, 0))", 1e-4, 0.0, PETSC_FALSE));
   PetscFunctionReturn(0);
 }
@@ -85,7 +74,7 @@ static PetscErrorCode LithoCommon(SlumpRheology rheo, SlumpRegKind kind)
   PetscCall(SlumpRheologyAddParameter(rheo, "density", "-rheology_litho_density", "Density in the lithostatic yield stress", 1.0, 0.0, PETSC_TRUE));
   PetscCall(SlumpRheologyAddParameter(rheo, "gravity", "-rheology_litho_gravity", "Gravity in the lithostatic yield stress", 1.0, 0.0, PETSC_FALSE));
   PetscCall(SlumpRheologyAddParameter(rheo, "height", "-rheology_litho_height", "Height H of the free surface (yield stress mu rho g (H - y))", 1.0, 0.0, PETSC_TRUE));
-  PetscCall(AddRegParameter(rheo, kind));
+  PetscCall(SlumpRheologyAddRegularisation(rheo, kind));
   PetscFunctionReturn(0);
 }
 

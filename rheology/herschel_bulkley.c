@@ -45,13 +45,9 @@ static PetscErrorCode HBCommon(SlumpRheology rheo, SlumpRegKind kind)
   PetscCall(SlumpRheologyAddParameter(rheo, "consistency", "-rheology_hb_K", "Consistency K", 1.0, 0.0, PETSC_TRUE));
   PetscCall(SlumpRheologyAddParameter(rheo, "n", "-rheology_hb_n", "Flow index n", 0.5, 0.0, PETSC_TRUE));
   PetscCall(SlumpRheologyAddParameter(rheo, "yield_stress", "-rheology_yield_stress", "Yield stress tau0", 1.0, 0.0, PETSC_FALSE));
-  if (kind == SLUMP_REG_PAPANASTASIOU) PetscCall(SlumpRheologyAddParameter(rheo, "m", "-rheology_papanastasiou_m", "Papanastasiou exponent m", 1e3, 0.0, PETSC_TRUE));
-  else if (kind == SLUMP_REG_BERCOVIER) PetscCall(SlumpRheologyAddParameter(rheo, "eps", "-rheology_bercovier_eps", "Bercovier-Engelman epsilon", 1e-3, 0.0, PETSC_TRUE));
-  else PetscCall(SlumpRheologyAddParameter(rheo, "eps", "-rheology_simple_eps", "Simple regularisation epsilon", 1e-3, 0.0, PETSC_TRUE));
+  PetscCall(SlumpRheologyAddRegularisation(rheo, kind));
   PetscCall(SlumpRheologyAddParameter(rheo, "gdot_min", "-rheology_hb_gdot_min", "Shear rate keeping the power-law viscosity finite at rest", 1e-6, 0.0, PETSC_FALSE));
-  rheo->ireg               = 3;
-  rheo->reg_larger_stiffer = kind == SLUMP_REG_PAPANASTASIOU ? PETSC_TRUE : PETSC_FALSE;
-  rheo->ops.check          = HBCheck;
+  rheo->ops.check = HBCheck;
   PetscFunctionReturn(0);
 }
 

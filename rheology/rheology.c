@@ -70,6 +70,19 @@ PetscErrorCode SlumpRheologyAddParameter(SlumpRheology rheo, const char name[], 
   PetscFunctionReturn(0);
 }
 
+/* The regularisation parameter of a yield term: m (Papanastasiou, larger is
+   stiffer) or eps (Bercovier-Engelman, simple; smaller is stiffer). */
+PetscErrorCode SlumpRheologyAddRegularisation(SlumpRheology rheo, SlumpRegKind kind)
+{
+  PetscFunctionBeginUser;
+  rheo->ireg               = rheo->nparam;
+  rheo->reg_larger_stiffer = kind == SLUMP_REG_PAPANASTASIOU ? PETSC_TRUE : PETSC_FALSE;
+  if (kind == SLUMP_REG_PAPANASTASIOU) PetscCall(SlumpRheologyAddParameter(rheo, "m", "-rheology_papanastasiou_m", "Papanastasiou exponent m", 1e3, 0.0, PETSC_TRUE));
+  else if (kind == SLUMP_REG_BERCOVIER) PetscCall(SlumpRheologyAddParameter(rheo, "eps", "-rheology_bercovier_eps", "Bercovier-Engelman epsilon", 1e-3, 0.0, PETSC_TRUE));
+  else PetscCall(SlumpRheologyAddParameter(rheo, "eps", "-rheology_simple_eps", "Simple regularisation epsilon", 1e-3, 0.0, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
 /* Changing type keeps the values of parameters the new type also has
    (viscosity, yield stress), so a scene may set them before the user's
    -rheology_type is read. */

@@ -84,6 +84,7 @@ static inline void SlumpPositivePressure(PetscReal p, PetscReal d, PetscReal *P,
 /* Used by implementations: declare a parameter (keeps a value already set by name). */
 PETSC_INTERN PetscErrorCode SlumpRheologyAddParameter(SlumpRheology, const char name[], const char option[], const char help[], PetscReal value, PetscReal lower, PetscBool strict);
 
+PETSC_INTERN PetscErrorCode SlumpRheologyAddRegularisation(SlumpRheology, SlumpRegKind);
 PETSC_INTERN PetscErrorCode SlumpRheologyCreate_Newtonian(SlumpRheology);
 PETSC_INTERN PetscErrorCode SlumpRheologyCreate_Papanastasiou(SlumpRheology);
 PETSC_INTERN PetscErrorCode SlumpRheologyCreate_Bercovier(SlumpRheology);

@@ -135,7 +135,7 @@ def test_stability_poiseuille_plug90():
     outputs are finite, and the plug half-width is within one cell of 0.9."""
     d = work("stability_plug90")
     p = run("poiseuille", ["-bn", "0.9", "-rheology_papanastasiou_m", "1e6", "-steady_continuation_start", "1e2", "-output_fields", "0"], d)
-    its = [int(l.split("Newton")[1].split()[0]) for l in p.stdout.splitlines() if l.startswith("steady:")]
+    its = continuation_newton(p.stdout)
     s = summary(d)
     print("Newton iterations per continuation step %s; plug half-width %.4f; relative L2 error %.3e" % (its, s["plug_half_width"], s["err_u_l2"] / s["norm_u_l2"]))
     if len(its) != 5 or max(its) > 15:
@@ -222,6 +222,11 @@ def test_startup():
     print("BDF2 relative errors %s, orders %s" % (err, o))
     if min(o) < 1.9:
         fail("BDF2 order expected >= 1.9, got %s" % o)
+
+
+def continuation_newton(stdout):
+    """Newton iterations of each continuation step (the 'steady:' lines)."""
+    return [int(l.split("Newton")[1].split()[0]) for l in stdout.splitlines() if l.startswith("steady:")]
 
 
 def newton_histories(stdout):
@@ -352,7 +357,7 @@ def test_stability_duct_bn1():
     iterations (budget), outputs finite, the whole duct unyielded."""
     d = work("stability_duct")
     p = run("duct", ["-bn", "1.0", "-rheology_papanastasiou_m", "1e5", "-steady_continuation_start", "1e2", "-output_fields", "0"], d)
-    its = [int(l.split("Newton")[1].split()[0]) for l in p.stdout.splitlines() if l.startswith("steady:")]
+    its = continuation_newton(p.stdout)
     s = summary(d)
     print("Newton iterations per continuation step %s; plug area %.4f; flow rate %.3e" % (its, s["plug_area"], s["flow_rate"]))
     if len(its) != 4 or max(its) > 15:
@@ -367,7 +372,7 @@ def test_stability_bagnold_lambda1e8():
     Newton iterations (budget), outputs finite, relative error <= 1e-3."""
     d = work("stability_bagnold")
     p = run("bagnold", ["-rheology_mui_lambda_r", "1e-8", "-steady_continuation_start", "1e-1", "-output_fields", "0"], d)
-    its = [int(l.split("Newton")[1].split()[0]) for l in p.stdout.splitlines() if l.startswith("steady:")]
+    its = continuation_newton(p.stdout)
     s = summary(d)
     rel = s["err_u_l2"] / s["norm_u_l2"]
     print("Newton iterations per continuation step %s; relative L2 error %.3e" % (its, rel))
