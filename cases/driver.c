@@ -107,6 +107,9 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
   Vec             X;
   PetscLogDouble  t_start, t_end;
   PetscReal       t_final, t_arrest = -1.0, err[2], nrm[2], rtol = 0, atol = 0, dt = 0, peak;
+  PetscInt        narrest = 0;
+  const SlumpArrestCriterion *arrest = NULL;
+  char            arrestname[16][64];
   PetscMPIInt     size;
   PetscInt        N, ncells, cStart, cEnd;
   SlumpIntegratorType itype = SLUMP_INTEGRATOR_IDA;
@@ -148,7 +151,19 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
     PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol));
     PetscCall(SlumpIntegratorGetType(ti, &itype));
     PetscCall(PetscOptionsGetReal(NULL, NULL, "-time_dt", &dt, NULL));
-    PetscCall(PetscOptionsGetReal(NULL, NULL, "-arrest_mean_shear_rate", &scene->arrest_threshold, NULL));
+    PetscCall(SlumpIntegratorGetArrestCriteria(ti, &narrest, &arrest));
+    /* unique column names: t_arrest_<diagnostic>[_<kind>][_<k>] */
+    for (PetscInt k = 0; k < narrest; ++k) {
+      PetscBool dup = PETSC_FALSE;
+      for (PetscInt j = 0; j < narrest; ++j)
+        if (j != k && arrest[j].diag == arrest[k].diag && arrest[j].kind == arrest[k].kind) dup = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(arrestname[k], sizeof(arrestname[k]), "%s%s%s", SlumpDiagnosticNames[arrest[k].diag], arrest[k].kind == SLUMP_THRESHOLD_ABSOLUTE ? "" : "_", arrest[k].kind == SLUMP_THRESHOLD_ABSOLUTE ? "" : SlumpThresholdKinds[arrest[k].kind]));
+      if (dup) {
+        char tmp[64];
+        PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s_%d", arrestname[k], (int)k));
+        PetscCall(PetscStrncpy(arrestname[k], tmp, sizeof(arrestname[k])));
+      }
+    }
   }
   PetscCall(PetscPrintf(comm, "slump %s: scene %s on %d rank%s\n", SLUMP_VERSION_STRING, scenename, (int)size, size > 1 ? "s" : ""));
   PetscCall(SlumpProblemView(prob, PETSC_VIEWER_STDOUT_(comm)));
@@ -214,10 +229,12 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
     fprintf(fp, "scene,rheology,regularisation,regularisation_value,integrator,rtol,atol,dt,ranks,cells,unknowns");
     for (PetscInt i = 0; i < scene->nparam; ++i) fprintf(fp, ",%s", scene->pname[i]);
     fprintf(fp, ",t_final,t_arrest,steps,res_evals,jac_evals,newton_its,lin_its,lin_solves,err_test_fails,conv_fails,h_min,h_max,wall_time,peak_memory_mb,kinetic_energy,mean_shear_rate,max_shear_rate,yielded_fraction,flow_rate,err_u_l2,norm_u_l2,err_p_l2,norm_p_l2");
+    for (PetscInt k = 0; k < narrest; ++k) fprintf(fp, ",t_arrest_%s,threshold_%s", arrestname[k], arrestname[k]);
     for (PetscInt i = 0; i < scene->nresult; ++i) fprintf(fp, ",%s", scene->rname[i]);
     fprintf(fp, "\n%s,%s,%s,%.6e,%s,%.3e,%.3e,%.6e,%d,%d,%d", scenename, rtype, regname ? regname : "none", (double)regval, scene->steady ? "steady" : SlumpIntegratorTypes[itype], (double)rtol, (double)atol, (double)dt, (int)size, (int)ncells, (int)N);
     for (PetscInt i = 0; i < scene->nparam; ++i) fprintf(fp, ",%.10e", (double)scene->pvalue[i]);
     fprintf(fp, ",%.10e,%.10e,%d,%d,%d,%d,%d,%d,%d,%d,%.6e,%.6e,%.4f,%.1f,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e", (double)t_final, (double)t_arrest, (int)stats.steps, (int)stats.res_evals, (int)stats.jac_evals, (int)stats.newton_its, (int)stats.lin_its, (int)stats.lin_solves, (int)stats.err_test_fails, (int)stats.conv_fails, (double)(stats.steps ? stats.h_min : 0.0), (double)stats.h_max, (double)(t_end - t_start), (double)peak, (double)r.last.kinetic_energy, (double)r.last.mean_shear_rate, (double)r.last.max_shear_rate, (double)r.last.yielded_fraction, (double)r.last.flow_rate, (double)err[0], (double)nrm[0], (double)err[1], (double)nrm[1]);
+    for (PetscInt k = 0; k < narrest; ++k) fprintf(fp, ",%.10e,%.10e", (double)arrest[k].t_arrest, (double)arrest[k].threshold);
     for (PetscInt i = 0; i < scene->nresult; ++i) fprintf(fp, ",%.10e", (double)scene->rvalue[i]);
     fprintf(fp, "\n");
     fclose(fp);
@@ -226,8 +243,11 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
   }
   PetscCall(PetscPrintf(comm, "summary: scene %s, t %.6g", scenename, (double)t_final));
   if (!scene->steady) {
-    if (t_arrest >= 0) PetscCall(PetscPrintf(comm, ", arrest (mean shear rate < %g) at t = %.6g", (double)(scene->arrest_threshold), (double)t_arrest));
-    else PetscCall(PetscPrintf(comm, ", no arrest detected"));
+    for (PetscInt k = 0; k < narrest; ++k) {
+      if (arrest[k].t_arrest >= 0) PetscCall(PetscPrintf(comm, ", arrest (%s < %.4g) at t = %.6g", SlumpDiagnosticNames[arrest[k].diag], (double)arrest[k].threshold, (double)arrest[k].t_arrest));
+      else PetscCall(PetscPrintf(comm, ", no arrest (%s < %.4g)", SlumpDiagnosticNames[arrest[k].diag], (double)arrest[k].threshold));
+    }
+    if (!narrest) PetscCall(PetscPrintf(comm, ", no arrest criterion"));
   }
   PetscCall(PetscPrintf(comm, ", %d steps, %d residual and %d Jacobian evaluations, %d Newton and %d linear iterations, %.3f s, %.0f MB", (int)stats.steps, (int)stats.res_evals, (int)stats.jac_evals, (int)stats.newton_its, (int)stats.lin_its, (double)(t_end - t_start), (double)peak));
   if (err[0] >= 0) PetscCall(PetscPrintf(comm, ", relative L2 velocity error %.3e", (double)(err[0] / (nrm[0] > 0 ? nrm[0] : 1.0))));

@@ -175,3 +175,50 @@ PetscErrorCode SlumpProblemComputeBoundaryMean(SlumpProblem prob, PetscReal t, V
   *mean = length > 0 ? integral / length : 0.0;
   PetscFunctionReturn(0);
 }
+
+const char *const SlumpDiagnosticNames[] = {"mean_shear_rate", "max_shear_rate", "l2_shear_rate", "kinetic_energy", "yielded_fraction"};
+
+PetscErrorCode SlumpProblemComputeDiagnosticList(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, const SlumpDiagnosticKind kinds[], PetscReal values[])
+{
+  SlumpRheologyPointwise pw;
+  PetscPointFunc         obj[SLUMP_DIAG_NUM];
+  PetscReal              r[SLUMP_DIAG_NUM];
+  PetscInt               slot[SLUMP_DIAG_NUM], nobj = 0;
+  PetscBool              want[SLUMP_DIAG_NUM] = {PETSC_FALSE};
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  for (PetscInt k = 0; k < n; ++k) want[kinds[k]] = PETSC_TRUE;
+  for (PetscInt d = 0; d < SLUMP_DIAG_NUM; ++d) {
+    slot[d] = -1;
+    if (!want[d] || d == SLUMP_DIAG_MAX_SHEAR_RATE) continue;
+    slot[d]     = nobj;
+    obj[nobj++] = d == SLUMP_DIAG_MEAN_SHEAR_RATE ? ShearRate : d == SLUMP_DIAG_L2_SHEAR_RATE ? ShearRateSquared : d == SLUMP_DIAG_KINETIC_ENERGY ? KineticEnergy : pw.yielded;
+  }
+  if (nobj) {
+    PetscCall(SlumpProblemFillLocal(prob, t, X));
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, nobj, obj, r));
+  }
+  for (PetscInt k = 0; k < n; ++k) {
+    switch (kinds[k]) {
+    case SLUMP_DIAG_MEAN_SHEAR_RATE:
+      values[k] = r[slot[kinds[k]]] / prob->area;
+      break;
+    case SLUMP_DIAG_L2_SHEAR_RATE:
+      values[k] = PetscSqrtReal(r[slot[kinds[k]]]);
+      break;
+    case SLUMP_DIAG_KINETIC_ENERGY:
+      values[k] = r[slot[kinds[k]]];
+      break;
+    case SLUMP_DIAG_YIELDED_FRACTION:
+      values[k] = r[slot[kinds[k]]] / prob->area;
+      break;
+    case SLUMP_DIAG_MAX_SHEAR_RATE:
+      PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
+      PetscCall(MaxShearRate(prob, &values[k]));
+      break;
+    default:
+      SETERRQ(prob->comm, PETSC_ERR_ARG_OUTOFRANGE, "Unknown diagnostic");
+    }
+  }
+  PetscFunctionReturn(0);
+}

@@ -128,6 +128,19 @@ typedef struct {
   PetscReal flow_rate;          /* int u . n over the flow-rate boundary, if any; anti-plane: int w */
 } SlumpDiagnostics;
 
+/* Single diagnostics, for arrest criteria (root functions). */
+typedef enum {
+  SLUMP_DIAG_MEAN_SHEAR_RATE,
+  SLUMP_DIAG_MAX_SHEAR_RATE,
+  SLUMP_DIAG_L2_SHEAR_RATE,
+  SLUMP_DIAG_KINETIC_ENERGY,
+  SLUMP_DIAG_YIELDED_FRACTION,
+  SLUMP_DIAG_NUM
+} SlumpDiagnosticKind;
+PETSC_EXTERN const char *const SlumpDiagnosticNames[];
+/* values[k] = diagnostic kinds[k] at (t, X); one quadrature pass for all the
+   integrals, one projection if the maximum is asked for (collective). */
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnosticList(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, const SlumpDiagnosticKind kinds[], PetscReal values[]);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean);
 /* Boundary over which the flow rate diagnostic integrates u . n. */

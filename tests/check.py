@@ -511,6 +511,45 @@ def test_couette_steady_initial():
         fail("arrest times expected to agree within 1e-3 relative, got %g" % rel)
 
 
+def test_arrest_criteria():
+    """Several arrest criteria at once on the demo (Couette cessation, Bn = 1,
+    m = 1e4), each root-found by IDA with its own time: mean, max and L2
+    shear rate < 1e-3, kinetic energy < 1e-6 x its initial value (relative),
+    yielded fraction < 1e-3, and the creep threshold 10 x tau_c/(eta_p + tau0 m)
+    on the mean shear rate. Every criterion fires, between half the energy
+    bound and the bound (0.1366); thresholds resolve as stated (1e-12
+    relative); the step count equals that of a single-criterion run. The
+    fixed-step BDF2 mode (dt = 4e-4, 300 steps) finds the mean-shear-rate
+    arrest within 1e-3 relative of IDA's."""
+    w = work("arrest_criteria")
+    spec = "mean_shear_rate:1e-3,max_shear_rate:1e-3,l2_shear_rate:1e-3,kinetic_energy:1e-6:relative,yielded_fraction:1e-3,mean_shear_rate:10:creep"
+    d = os.path.join(w, "ida")
+    run("couette_cessation", ["-arrest", spec, "-output_fields", "0", "-time_final", "0.12"], d)
+    s = summary(d)
+    ke0 = series(d)[0]["kinetic_energy"]
+    bound = s["t_stop_bound"]
+    expect = {"mean_shear_rate": 1e-3, "max_shear_rate": 1e-3, "l2_shear_rate": 1e-3, "kinetic_energy_relative": 1e-6 * ke0, "yielded_fraction": 1e-3, "mean_shear_rate_creep": 10.0 / (1.0 + 1.0 * 1e4)}
+    for name, thr in expect.items():
+        t = s["t_arrest_" + name]
+        print("%-26s threshold %.4e (expected %.4e)  arrest at t = %.6f" % (name, s["threshold_" + name], thr, t))
+        if abs(s["threshold_" + name] - thr) > 1e-9 * thr:
+            fail("%s: threshold expected %g, got %g" % (name, thr, s["threshold_" + name]))
+        if not 0.5 * bound < t < bound:
+            fail("%s: arrest time expected in (%g, %g), got %g" % (name, 0.5 * bound, bound, t))
+    d1 = os.path.join(w, "single")
+    run("couette_cessation", ["-output_fields", "0", "-time_final", "0.12"], d1)
+    s1 = summary(d1)
+    if s1["steps"] != s["steps"]:
+        fail("root functions changed the step sequence: %d steps vs %d" % (s["steps"], s1["steps"]))
+    d2 = os.path.join(w, "bdf2")
+    run("couette_cessation", ["-time_integrator", "bdf2", "-time_dt", "4e-4", "-output_fields", "0", "-time_final", "0.12"], d2)
+    s2 = summary(d2)
+    rel = abs(s2["t_arrest_mean_shear_rate"] - s["t_arrest_mean_shear_rate"]) / s["t_arrest_mean_shear_rate"]
+    print("BDF2 dt 4e-4: arrest %.6f in %d steps; IDA %.6f in %d steps (run to 0.12); rel diff %.1e" % (s2["t_arrest_mean_shear_rate"], s2["steps"], s["t_arrest_mean_shear_rate"], s["steps"], rel))
+    if not rel <= 1e-3:
+        fail("BDF2 and IDA arrest times expected within 1e-3, got %g" % rel)
+
+
 def write_gmsh_square(path, n):
     """A Gmsh 2.2 ASCII file of the unit square, n x n squares cut like
     SlumpMeshCreateRectangle, with physical lines bottom/right/top/left."""
@@ -565,6 +604,8 @@ INPUT_CASES = [
     ("missing_mesh", ["-scene", "mms_stokes", "-mesh_file", "/nonexistent/mesh.msh"], "-mesh_file"),
     ("unreadable_options", ["-scene", "mms_stokes", "-options_file", "/nonexistent/opts.txt"], "-options_file"),
     ("bad_rtol", ["-scene", "decay", "-time_rtol", "2"], "-time_rtol"),
+    ("bad_arrest", ["-scene", "couette_cessation", "-arrest", "speed:1e-3"], "-arrest"),
+    ("bad_creep", ["-scene", "couette_cessation", "-arrest", "kinetic_energy:1:creep"], "-arrest"),
 ]
 
 

@@ -29,8 +29,8 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
   SlumpImplicitSolver s;
   Vec                 Yprev, Yn, beta, Y;
   PetscInt            N, kout = 1;
-  PetscReal           dt, next_out, gprev = 0.0;
-  PetscBool           have_prev = PETSC_FALSE;
+  PetscReal           dt, next_out, gprev[16], g1[16];
+  PetscBool           have_prev = PETSC_FALSE, stop = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
   N  = (PetscInt)PetscCeilReal((ti->tfinal - ti->t0) / ti->dt - 1e-9);
@@ -41,10 +41,8 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
   PetscCall(VecDuplicate(X, &beta));
   PetscCall(VecDuplicate(X, &Y));
   if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
-  if (ti->arrest_threshold > 0) {
-    PetscCall(SlumpProblemComputeMeanShearRate(ti->prob, ti->t0, X, &gprev));
-    gprev -= ti->arrest_threshold;
-  }
+  PetscCall(SlumpIntegratorResolveArrest(ti, ti->t0, X));
+  if (ti->narrest) PetscCall(SlumpIntegratorArrestFunctions(ti, ti->t0, X, gprev));
   next_out = ti->t0 + ti->dtout;
   for (PetscInt n = 0; n < N; ++n) {
     const PetscReal tn = ti->t0 + n * dt, tn1 = ti->t0 + (n + 1) * dt;
@@ -71,36 +69,37 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
       ti->t           = tn1;
       if (ti->stepmon) PetscCall(ti->stepmon(ti, &r, ti->stepctx));
     }
-    /* arrest: sign change of g = mean shear rate - threshold on [tn, tn1] */
-    if (ti->arrest_threshold > 0 && ti->t_arrest < 0) {
-      PetscReal g1;
-      PetscCall(SlumpProblemComputeMeanShearRate(ti->prob, tn1, X, &g1));
-      g1 -= ti->arrest_threshold;
-      if (gprev > 0 && g1 <= 0) {
-        PetscReal a = tn, b = tn1, ga = gprev, gb = g1, c = b;
-        PetscInt  side = 0;
-        for (PetscInt it = 0; it < 60 && PetscAbsReal(b - a) > 1e-12 * dt; ++it) {
-          PetscReal gc;
-          c = (a * gb - b * ga) / (gb - ga);
-          PetscCall(Interpolate(c, tn - dt, have_prev ? Yprev : NULL, tn, Yn, tn1, X, Y));
-          PetscCall(SlumpProblemComputeMeanShearRate(ti->prob, c, Y, &gc));
-          gc -= ti->arrest_threshold;
-          if (PetscAbsReal(gc) < 1e-14 * ti->arrest_threshold) break;
-          if ((gc > 0) == (ga > 0)) {
-            a  = c;
-            ga = gc;
-            if (side == -1) gb *= 0.5;
-            side = -1;
-          } else {
-            b  = c;
-            gb = gc;
-            if (side == 1) ga *= 0.5;
-            side = 1;
+    /* arrest: falling sign change of g_k = diagnostic_k - threshold_k on [tn, tn1],
+       located on the quadratic interpolant by the Illinois method */
+    if (ti->narrest) {
+      PetscCall(SlumpIntegratorArrestFunctions(ti, tn1, X, g1));
+      for (PetscInt k = 0; k < ti->narrest; ++k) {
+        if (ti->arrest[k].t_arrest < 0 && gprev[k] > 0 && g1[k] <= 0) {
+          PetscReal a = tn, b = tn1, ga = gprev[k], gb = g1[k], c = b, gall[16];
+          PetscInt  side = 0;
+          for (PetscInt it = 0; it < 60 && PetscAbsReal(b - a) > 1e-12 * dt; ++it) {
+            PetscReal gc;
+            c = (a * gb - b * ga) / (gb - ga);
+            PetscCall(Interpolate(c, tn - dt, have_prev ? Yprev : NULL, tn, Yn, tn1, X, Y));
+            PetscCall(SlumpIntegratorArrestFunctions(ti, c, Y, gall));
+            gc = gall[k];
+            if (PetscAbsReal(gc) < 1e-14 * PetscAbsReal(ti->arrest[k].threshold)) break;
+            if ((gc > 0) == (ga > 0)) {
+              a  = c;
+              ga = gc;
+              if (side == -1) gb *= 0.5;
+              side = -1;
+            } else {
+              b  = c;
+              gb = gc;
+              if (side == 1) ga *= 0.5;
+              side = 1;
+            }
           }
+          if (SlumpIntegratorArrestRecord(ti, k, c)) stop = PETSC_TRUE;
         }
-        ti->t_arrest = c;
+        gprev[k] = g1[k];
       }
-      gprev = g1;
     }
     while (next_out <= tn1 * (1 + 1e-12) && next_out <= ti->tfinal * (1 + 1e-12)) {
       if (PetscAbsReal(next_out - tn1) <= 1e-9 * dt) PetscCall(VecCopy(X, Y));
@@ -110,7 +109,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     }
     PetscCall(VecCopy(Yn, Yprev));
     have_prev = PETSC_TRUE;
-    if (ti->arrest_stop && ti->t_arrest >= 0) break;
+    if (stop) break;
   }
   {
     SlumpStats st;

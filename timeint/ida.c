@@ -37,11 +37,8 @@ static PetscErrorCode ExactAssemble(void *ctx, PetscReal t, Vec y, Vec yp, Petsc
 
 static int IdaRoot(realtype t, N_Vector yy, N_Vector yp, realtype *gout, void *user)
 {
-  IDAUser  *u = (IDAUser *)user;
-  PetscReal mean;
-  if (SlumpProblemComputeMeanShearRate(u->prob, t, N_VGetVector_Petsc(yy), &mean)) return -1;
-  gout[0] = mean - u->ti->arrest_threshold;
-  return 0;
+  IDAUser *u = (IDAUser *)user;
+  return SlumpSundialsStatus(SlumpIntegratorArrestFunctions(u->ti, t, N_VGetVector_Petsc(yy), gout));
 }
 
 PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
@@ -157,10 +154,12 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   IDACHECK(IDASetStopTime(mem, ti->tfinal));
   IDACHECK(IDASetMaxNumSteps(mem, ti->max_steps));
   if (ti->dt > 0) IDACHECK(IDASetInitStep(mem, ti->dt));
-  if (ti->arrest_threshold > 0) {
-    int dir = -1;
-    IDACHECK(IDARootInit(mem, 1, IdaRoot));
-    IDACHECK(IDASetRootDirection(mem, &dir));
+  PetscCall(SlumpIntegratorResolveArrest(ti, ti->t0, X));
+  if (ti->narrest) {
+    int dir[16];
+    for (PetscInt k = 0; k < ti->narrest; ++k) dir[k] = -1;
+    IDACHECK(IDARootInit(mem, (int)ti->narrest, IdaRoot));
+    IDACHECK(IDASetRootDirection(mem, dir));
   }
   if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
   next_out = ti->t0 + ti->dtout;
@@ -174,9 +173,15 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
     }
     ti->t = tret;
     if (flag == IDA_ROOT_RETURN) {
-      if (ti->t_arrest < 0) ti->t_arrest = tret;
-      PetscCall(PetscInfo(NULL, "arrest root at t = %g\n", (double)tret));
-      if (ti->arrest_stop) {
+      int       info[16];
+      PetscBool stop = PETSC_FALSE;
+      IDACHECK(IDAGetRootInfo(mem, info));
+      for (PetscInt k = 0; k < ti->narrest; ++k)
+        if (info[k]) {
+          PetscCall(PetscInfo(NULL, "arrest (%s) at t = %g\n", SlumpDiagnosticNames[ti->arrest[k].diag], (double)tret));
+          if (SlumpIntegratorArrestRecord(ti, k, tret)) stop = PETSC_TRUE;
+        }
+      if (stop) {
         if (ti->outmon) PetscCall(ti->outmon(ti, tret, X, ti->outctx));
         break;
       }

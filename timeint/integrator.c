@@ -2,7 +2,11 @@
  * fixed-step BDF2. */
 #include "timeintimpl.h"
 
+#include "slumprheology.h"
+
 const char *const SlumpIntegratorTypes[] = {"ida", "bdf2", "SlumpIntegratorType", "SLUMP_INTEGRATOR_", NULL};
+const char *const SlumpThresholdKinds[]  = {"absolute", "relative", "creep"};
+static const char *const StopKinds[]     = {"none", "first", "all", "SlumpArrestStop", "SLUMP_ARREST_STOP_", NULL};
 
 PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti)
 {
@@ -18,7 +22,7 @@ PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti)
   s->max_steps   = 1000000;
   s->max_nonlin_iters = 4;
   s->nonlin_conv_coef = 0.33;
-  s->t_arrest    = -1.0;
+  s->stress_scale = 1.0;
   s->stats.h_min = PETSC_MAX_REAL;
   *ti            = s;
   PetscFunctionReturn(0);
@@ -86,19 +90,132 @@ PetscErrorCode SlumpIntegratorSetTimeStep(SlumpIntegrator ti, PetscReal dt)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpIntegratorAddArrestCriterion(SlumpIntegrator ti, SlumpDiagnosticKind diag, SlumpThresholdKind kind, PetscReal value)
+{
+  SlumpArrestCriterion *c;
+  PetscFunctionBeginUser;
+  PetscCheck(ti->narrest < 16, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "At most 16 arrest criteria (-arrest)");
+  PetscCheck(kind != SLUMP_THRESHOLD_CREEP || diag == SLUMP_DIAG_MEAN_SHEAR_RATE || diag == SLUMP_DIAG_MAX_SHEAR_RATE || diag == SLUMP_DIAG_L2_SHEAR_RATE, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-arrest: a creep threshold applies to shear rates (mean_shear_rate, max_shear_rate, l2_shear_rate), not to %s", SlumpDiagnosticNames[diag]);
+  PetscCheck(value > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-arrest: the threshold of %s must be positive; got %g", SlumpDiagnosticNames[diag], (double)value);
+  c            = &ti->arrest[ti->narrest++];
+  c->diag      = diag;
+  c->kind      = kind;
+  c->value     = value;
+  c->threshold = value;
+  c->t_arrest  = -1.0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpIntegratorGetArrestCriteria(SlumpIntegrator ti, PetscInt *n, const SlumpArrestCriterion **c)
+{
+  PetscFunctionBeginUser;
+  *n = ti->narrest;
+  *c = ti->arrest;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpIntegratorSetCharacteristicStress(SlumpIntegrator ti, PetscReal stress)
+{
+  PetscFunctionBeginUser;
+  ti->stress_scale = stress;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpIntegratorSetArrestThreshold(SlumpIntegrator ti, PetscReal threshold, PetscBool stop)
 {
   PetscFunctionBeginUser;
-  ti->arrest_threshold = threshold;
-  ti->arrest_stop      = stop;
+  ti->narrest = 0;
+  if (threshold > 0) PetscCall(SlumpIntegratorAddArrestCriterion(ti, SLUMP_DIAG_MEAN_SHEAR_RATE, SLUMP_THRESHOLD_ABSOLUTE, threshold));
+  ti->arrest_stop = stop ? SLUMP_ARREST_STOP_FIRST : SLUMP_ARREST_STOP_NONE;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SlumpIntegratorGetArrestTime(SlumpIntegrator ti, PetscReal *tarrest)
 {
   PetscFunctionBeginUser;
-  *tarrest = ti->t_arrest;
+  *tarrest = -1.0;
+  for (PetscInt k = 0; k < ti->narrest; ++k)
+    if (ti->arrest[k].t_arrest >= 0 && (*tarrest < 0 || ti->arrest[k].t_arrest < *tarrest)) *tarrest = ti->arrest[k].t_arrest;
   PetscFunctionReturn(0);
+}
+
+/* "name:value[:kind]" */
+static PetscErrorCode ParseCriterion(SlumpIntegrator ti, MPI_Comm comm, char *spec)
+{
+  char     *name = spec, *val, *kind, *end;
+  PetscInt  d, k = SLUMP_THRESHOLD_ABSOLUTE;
+  PetscReal v;
+  char      names[256] = "";
+  PetscFunctionBeginUser;
+  for (d = 0; d < SLUMP_DIAG_NUM; ++d) {
+    if (d) PetscCall(PetscStrlcat(names, ", ", sizeof(names)));
+    PetscCall(PetscStrlcat(names, SlumpDiagnosticNames[d], sizeof(names)));
+  }
+  val = strchr(spec, ':');
+  PetscCheck(val, comm, PETSC_ERR_USER_INPUT, "-arrest takes name:value[:absolute|relative|creep],...; got '%s'", spec);
+  *val++ = 0;
+  kind   = strchr(val, ':');
+  if (kind) *kind++ = 0;
+  for (d = 0; d < SLUMP_DIAG_NUM; ++d) {
+    PetscBool same;
+    PetscCall(PetscStrcmp(name, SlumpDiagnosticNames[d], &same));
+    if (same) break;
+  }
+  PetscCheck(d < SLUMP_DIAG_NUM, comm, PETSC_ERR_USER_INPUT, "-arrest: unknown diagnostic '%s'; accepted: %s", name, names);
+  v = strtod(val, &end);
+  PetscCheck(end != val && *end == 0, comm, PETSC_ERR_USER_INPUT, "-arrest: '%s' is not a number (criterion %s)", val, name);
+  if (kind) {
+    for (k = 0; k < 3; ++k) {
+      PetscBool same;
+      PetscCall(PetscStrcmp(kind, SlumpThresholdKinds[k], &same));
+      if (same) break;
+    }
+    PetscCheck(k < 3, comm, PETSC_ERR_USER_INPUT, "-arrest: unknown threshold kind '%s' (criterion %s); accepted: absolute, relative, creep", kind, name);
+  }
+  PetscCall(SlumpIntegratorAddArrestCriterion(ti, (SlumpDiagnosticKind)d, (SlumpThresholdKind)k, v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpIntegratorResolveArrest(SlumpIntegrator ti, PetscReal t0, Vec X0)
+{
+  SlumpRheology rheo;
+  PetscReal     etaplug;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetRheology(ti->prob, &rheo));
+  PetscCall(SlumpRheologyGetPlugViscosity(rheo, 0.0, &etaplug));
+  for (PetscInt k = 0; k < ti->narrest; ++k) {
+    SlumpArrestCriterion *c = &ti->arrest[k];
+    c->t_arrest             = -1.0;
+    if (c->kind == SLUMP_THRESHOLD_ABSOLUTE) c->threshold = c->value;
+    else if (c->kind == SLUMP_THRESHOLD_CREEP) c->threshold = c->value * ti->stress_scale / etaplug;
+    else {
+      PetscReal v0;
+      PetscCall(SlumpProblemComputeDiagnosticList(ti->prob, t0, X0, 1, &c->diag, &v0));
+      c->threshold = c->value * v0;
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpIntegratorArrestFunctions(SlumpIntegrator ti, PetscReal t, Vec X, PetscReal g[])
+{
+  SlumpDiagnosticKind kinds[16];
+  PetscFunctionBeginUser;
+  for (PetscInt k = 0; k < ti->narrest; ++k) kinds[k] = ti->arrest[k].diag;
+  PetscCall(SlumpProblemComputeDiagnosticList(ti->prob, t, X, ti->narrest, kinds, g));
+  for (PetscInt k = 0; k < ti->narrest; ++k) g[k] -= ti->arrest[k].threshold;
+  PetscFunctionReturn(0);
+}
+
+PetscBool SlumpIntegratorArrestRecord(SlumpIntegrator ti, PetscInt k, PetscReal t)
+{
+  PetscBool all = PETSC_TRUE;
+  if (ti->arrest[k].t_arrest < 0) ti->arrest[k].t_arrest = t;
+  for (PetscInt j = 0; j < ti->narrest; ++j)
+    if (ti->arrest[j].t_arrest < 0) all = PETSC_FALSE;
+  if (ti->arrest_stop == SLUMP_ARREST_STOP_FIRST) return PETSC_TRUE;
+  if (ti->arrest_stop == SLUMP_ARREST_STOP_ALL) return all;
+  return PETSC_FALSE;
 }
 
 PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
@@ -123,8 +240,25 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCall(PetscOptionsReal("-ida_nonlin_conv_coef", "IDA: Newton stops when the correction is below this fraction of the error tolerance", "", ti->nonlin_conv_coef, &ti->nonlin_conv_coef, NULL));
   PetscCall(PetscOptionsInt("-ida_max_nonlin_iters", "IDA: Newton iterations per step before the step is cut", "", ti->max_nonlin_iters, &ti->max_nonlin_iters, NULL));
   PetscCall(PetscOptionsInt("-time_max_steps", "Maximum number of steps", "", ti->max_steps, &ti->max_steps, NULL));
-  PetscCall(PetscOptionsReal("-arrest_mean_shear_rate", "Arrest when the mean shear rate falls below this (root-found; <= 0: off)", "", ti->arrest_threshold, &ti->arrest_threshold, NULL));
-  PetscCall(PetscOptionsBool("-arrest_stop", "Stop the run at the arrest time", "", ti->arrest_stop, &ti->arrest_stop, NULL));
+  {
+    PetscReal thr  = ti->narrest ? ti->arrest[0].value : 0.0;
+    char      spec[1024] = "";
+    PetscBool set_thr, set_spec;
+    PetscEnum stop = (PetscEnum)ti->arrest_stop;
+    PetscCall(PetscOptionsReal("-arrest_mean_shear_rate", "Arrest when the mean shear rate falls below this (root-found; <= 0: off)", "", thr, &thr, &set_thr));
+    PetscCall(PetscOptionsString("-arrest", "Arrest criteria name:value[:absolute|relative|creep],... (names: mean_shear_rate, max_shear_rate, l2_shear_rate, kinetic_energy, yielded_fraction)", "", spec, spec, sizeof(spec), &set_spec));
+    PetscCall(PetscOptionsEnum("-arrest_stop", "Stop at the first arrest, when all criteria have arrested, or never", "", StopKinds, stop, &stop, NULL));
+    ti->arrest_stop = (SlumpArrestStop)stop;
+    if (set_thr) {
+      ti->narrest = 0;
+      if (thr > 0) PetscCall(SlumpIntegratorAddArrestCriterion(ti, SLUMP_DIAG_MEAN_SHEAR_RATE, SLUMP_THRESHOLD_ABSOLUTE, thr));
+    }
+    if (set_spec) {
+      char *tok, *save = NULL;
+      ti->narrest = 0;
+      for (tok = strtok_r(spec, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) PetscCall(ParseCriterion(ti, comm, tok));
+    }
+  }
   PetscOptionsEnd();
   ti->type = (SlumpIntegratorType)type;
   PetscCheck(ti->tfinal > ti->t0, comm, PETSC_ERR_USER_INPUT, "-time_final must be greater than the initial time %g; got %g", (double)ti->t0, (double)ti->tfinal);

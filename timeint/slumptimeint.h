@@ -39,15 +39,37 @@ PETSC_EXTERN PetscErrorCode SlumpIntegratorDestroy(SlumpIntegrator *ti);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetType(SlumpIntegrator ti, SlumpIntegratorType type);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetType(SlumpIntegrator ti, SlumpIntegratorType *type);
 /* -time_integrator ida|bdf2 -time_final -time_output_dt -time_rtol -time_atol
-   -time_dt (bdf2 step; ida first step) -time_max_steps -arrest_mean_shear_rate -arrest_stop */
+   -time_dt (bdf2 step; ida first step) -time_max_steps -arrest -arrest_stop */
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTimes(SlumpIntegrator ti, PetscReal t0, PetscReal tfinal, PetscReal dtout);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTimes(SlumpIntegrator ti, PetscReal *t0, PetscReal *tfinal, PetscReal *dtout);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTolerances(SlumpIntegrator ti, PetscReal rtol, PetscReal atol);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTolerances(SlumpIntegrator ti, PetscReal *rtol, PetscReal *atol);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTimeStep(SlumpIntegrator ti, PetscReal dt);
-/* Root function: mean shear rate minus threshold (threshold <= 0: off). */
+/* Arrest criteria: IDA root functions g = diagnostic - threshold (falling).
+   The threshold is absolute, relative to the diagnostic's initial value, or
+   "creep": value x (characteristic stress / plug viscosity), the shear rate
+   of a Newtonian fluid with the regularised plug viscosity (Riber's thesis).
+   Options: -arrest name:value[:absolute|relative|creep],... with the names
+   of SlumpDiagnosticNames; -arrest_stop none|first|all. */
+typedef enum { SLUMP_THRESHOLD_ABSOLUTE, SLUMP_THRESHOLD_RELATIVE, SLUMP_THRESHOLD_CREEP } SlumpThresholdKind;
+PETSC_EXTERN const char *const SlumpThresholdKinds[];
+typedef struct {
+  SlumpDiagnosticKind diag;
+  SlumpThresholdKind  kind;
+  PetscReal           value;     /* as given                         */
+  PetscReal           threshold; /* resolved at the initial time     */
+  PetscReal           t_arrest;  /* first time below it; -1 if none  */
+} SlumpArrestCriterion;
+typedef enum { SLUMP_ARREST_STOP_NONE, SLUMP_ARREST_STOP_FIRST, SLUMP_ARREST_STOP_ALL } SlumpArrestStop;
+PETSC_EXTERN PetscErrorCode SlumpIntegratorAddArrestCriterion(SlumpIntegrator ti, SlumpDiagnosticKind diag, SlumpThresholdKind kind, PetscReal value);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetArrestCriteria(SlumpIntegrator ti, PetscInt *n, const SlumpArrestCriterion **c);
+/* Stress scale of the scene for the creep threshold (default 1). */
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetCharacteristicStress(SlumpIntegrator ti, PetscReal stress);
+/* Default criterion of a scene: mean shear rate below threshold (<= 0: none);
+   replaced by -arrest. */
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetArrestThreshold(SlumpIntegrator ti, PetscReal threshold, PetscBool stop);
+/* Earliest arrest time over the criteria (-1 if none). */
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetArrestTime(SlumpIntegrator ti, PetscReal *tarrest);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetStepMonitor(SlumpIntegrator ti, SlumpStepMonitorFn fn, void *ctx);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetOutputMonitor(SlumpIntegrator ti, SlumpOutputMonitorFn fn, void *ctx);

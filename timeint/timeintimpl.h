@@ -41,8 +41,10 @@ struct _n_SlumpIntegrator {
   PetscInt             order_last, max_steps, max_nonlin_iters;
   PetscBool            exact_newton;
   PetscReal            nonlin_conv_coef;
-  PetscReal            arrest_threshold, t_arrest;
-  PetscBool            arrest_stop;
+  PetscInt             narrest;
+  SlumpArrestCriterion arrest[16];
+  SlumpArrestStop      arrest_stop;
+  PetscReal            stress_scale;
   SlumpStats           stats;
   SlumpStepMonitorFn   stepmon;
   void                *stepctx;
@@ -50,5 +52,11 @@ struct _n_SlumpIntegrator {
   void                *outctx;
 };
 
+/* Resolve relative/creep thresholds from the initial state. */
+PETSC_INTERN PetscErrorCode SlumpIntegratorResolveArrest(SlumpIntegrator, PetscReal t0, Vec X0);
+/* g[k] = diagnostic_k(t, X) - threshold_k */
+PETSC_INTERN PetscErrorCode SlumpIntegratorArrestFunctions(SlumpIntegrator, PetscReal t, Vec X, PetscReal g[]);
+/* Record criterion k's arrest at t; returns whether the run should stop. */
+PETSC_INTERN PetscBool      SlumpIntegratorArrestRecord(SlumpIntegrator, PetscInt k, PetscReal t);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator, Vec);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator, Vec);
