@@ -96,7 +96,7 @@ static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *mb)
 PetscErrorCode SlumpRun(MPI_Comm comm)
 {
   char            scenename[64] = "couette_cessation", dir[PETSC_MAX_PATH_LEN] = "";
-  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE;
+  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE, eigen = PETSC_FALSE;
   SlumpProblem    prob;
   SlumpScene      scene;
   SlumpIntegrator ti = NULL;
@@ -126,6 +126,7 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<scene>)", "", dir, dir, sizeof(dir), &set));
   PetscCall(PetscOptionsBool("-output_fields", "Write fields (XDMF + HDF5) at output times", "", fields, &fields, NULL));
   PetscCall(PetscOptionsBool("-quiet", "No progress lines", "", quiet, &quiet, NULL));
+  PetscCall(PetscOptionsBool("-viscous_eigenvalue", "Compute lambda1 of the viscous operator (SLEPc) and the energy bound on the stopping time", "", eigen, &eigen, NULL));
   PetscOptionsEnd();
   r.quiet = quiet;
   PetscCall(PetscStrcmp(scenename, "list", &list));
@@ -192,6 +193,30 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
   PetscCall(SlumpProblemProjectInitialState(prob, 0.0, X));
   if (scene->initial) PetscCall(scene->initial(scene, prob, X));
   PetscCall(PetscMemzero(&stats, sizeof(stats)));
+  if (eigen) {
+    PetscReal l1;
+    PetscCall(SlumpProblemComputeViscousEigenvalue(prob, &l1));
+    PetscCall(PetscPrintf(comm, "viscous operator: lambda1 = %.8g (SLEPc)\n", (double)l1));
+    PetscCall(SlumpSceneAddResult(scene, "lambda1", l1));
+    if (!scene->steady) {
+      PetscReal tau0 = 0.0, etap = 1.0, rho = 1.0;
+      PetscBool has;
+      PetscCall(SlumpRheologyHasParameter(rheo, "yield_stress", &has));
+      if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", &tau0));
+      PetscCall(SlumpRheologyHasParameter(rheo, "viscosity", &has));
+      if (has) PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", &etap));
+      PetscCall(PetscOptionsGetReal(NULL, NULL, "-density", &rho, NULL));
+      if (scene->bound_beta > 0 && tau0 > 0) {
+        SlumpDiagnosticKind ke = SLUMP_DIAG_KINETIC_ENERGY;
+        PetscReal           e0, u0, T;
+        PetscCall(SlumpProblemComputeDiagnosticList(prob, 0.0, X, 1, &ke, &e0));
+        u0 = PetscSqrtReal(2.0 * e0 / rho) * scene->bound_norm_scale;
+        T  = rho / (etap * l1) * PetscLogReal(1.0 + etap * l1 * u0 / (tau0 * scene->bound_beta));
+        PetscCall(PetscPrintf(comm, "energy bound on the exact stopping time: T <= %.6g (||u0|| = %.6g, beta = %.6g)\n", (double)T, (double)u0, (double)scene->bound_beta));
+        PetscCall(SlumpSceneAddResult(scene, "t_stop_bound_slepc", T));
+      } else PetscCall(PetscPrintf(comm, "no stopping-time bound printed: %s\n", tau0 > 0 ? "the constant beta of the estimate is not known for this geometry" : "no yield stress"));
+    }
+  }
   if (scene->steady) {
     PetscCall(SlumpSteadySolve(prob, X, &stats));
     t_final = 0.0;

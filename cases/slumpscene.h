@@ -16,6 +16,10 @@ struct _n_SlumpScene {
   PetscReal tfinal, dtout;        /* defaults for -time_final, -time_output_dt */
   PetscReal arrest_threshold;     /* default for -arrest_mean_shear_rate       */
   PetscInt  mesh_n[2];            /* cells across (x, y) of the default mesh    */
+  /* energy estimate T <= rho/(eta_p l1) ln(1 + eta_p l1 ||u0|| / (tau0 beta)):
+     beta (0: unknown for this geometry) and the factor turning the L2 norm
+     over the mesh into the norm of the estimate (1/sqrt(Lx) for 1-D strips) */
+  PetscReal bound_beta, bound_norm_scale;
   /* key parameters, written to summary.csv */
   PetscInt  nparam;
   char      pname[SLUMP_SCENE_MAX_ITEMS][32];

@@ -268,20 +268,28 @@ PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, V
 
 PetscErrorCode SlumpAssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat Jac)
 {
+  PetscDS       ds;
+  PetscPointJac g[2][2][4];
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDS(prob->dm, &ds));
+  for (PetscInt f = 0; f < prob->assembly->Nf; ++f)
+    for (PetscInt h = 0; h < prob->assembly->Nf; ++h) PetscCall(PetscDSGetJacobian(ds, f, h, &g[f][h][0], &g[f][h][1], &g[f][h][2], &g[f][h][3]));
+  PetscCall(SlumpAssembleJacobianWith(prob, t, locX, locXdot, shift, g, Jac));
+  PetscFunctionReturn(0);
+}
+
+/* The same with an explicit table of kernels g[test field][trial field][g0..g3]
+   (NULL: none), e.g. the Laplacian and mass matrix of the eigenproblem. */
+PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscPointJac g[2][2][4], Mat Jac)
+{
   SlumpAssembly      a = prob->assembly;
   PetscDS            ds;
-  PetscSection       s, gs;
-  PetscPointJac      g[2][2][4];
   const PetscScalar *constants;
   PetscInt           nc, dim = a->dim;
   CellData          *cd;
   PetscFunctionBeginUser;
   PetscCall(DMGetDS(prob->dm, &ds));
-  PetscCall(DMGetLocalSection(prob->dm, &s));
-  PetscCall(DMGetGlobalSection(prob->dm, &gs));
   PetscCall(PetscDSGetConstants(ds, &nc, &constants));
-  for (PetscInt f = 0; f < a->Nf; ++f)
-    for (PetscInt h = 0; h < a->Nf; ++h) PetscCall(PetscDSGetJacobian(ds, f, h, &g[f][h][0], &g[f][h][1], &g[f][h][2], &g[f][h][3]));
   PetscCall(PetscLogEventBegin(SLUMP_Jacobian, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(Jac));
   PetscCall(PetscMalloc1(1, &cd));

@@ -147,6 +147,9 @@ PETSC_EXTERN PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, 
 PETSC_EXTERN PetscErrorCode SlumpProblemSetFlowRateBoundary(SlumpProblem prob, const char label[]);
 /* Mean of velocity component comp over the boundary `label` (collective). */
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeBoundaryMean(SlumpProblem prob, PetscReal t, Vec X, const char label[], PetscInt comp, PetscReal *mean);
+/* Smallest eigenvalue of the viscous operator (vector or scalar Laplacian)
+   with the problem's Dirichlet walls, by SLEPc (collective). */
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeViscousEigenvalue(SlumpProblem prob, PetscReal *lambda1);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetArea(SlumpProblem prob, PetscReal *area);
 /* L2 errors of velocity and pressure against the exact solution (if any). */
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeErrors(SlumpProblem prob, PetscReal t, Vec X, PetscReal err[2], PetscReal norm[2]);

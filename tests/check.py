@@ -550,6 +550,30 @@ def test_arrest_criteria():
         fail("BDF2 and IDA arrest times expected within 1e-3, got %g" % rel)
 
 
+def test_eigen_bounds():
+    """SLEPc: lambda1 of the viscous operator with the scene's walls matches
+    pi^2/L^2 on the Couette strip and 2 pi^2/L^2 on the square duct (scalar
+    Laplacian) to 0.5 %; the energy bound printed for Couette cessation lies
+    above the detected arrest time."""
+    w = work("eigen")
+    d = os.path.join(w, "couette")
+    p = run("couette_cessation", ["-viscous_eigenvalue", "-time_final", "0.12", "-output_fields", "0"], d)
+    s = summary(d)
+    rel = abs(s["lambda1"] - math.pi ** 2) / math.pi ** 2
+    print("Couette strip: lambda1 %.8f (pi^2 = %.8f, rel %.1e); bound %.6f > arrest %.6f" % (s["lambda1"], math.pi ** 2, rel, s["t_stop_bound_slepc"], s["t_arrest"]))
+    if not rel <= 5e-3:
+        fail("Couette lambda1 expected within 0.5 %% of pi^2, got %g" % s["lambda1"])
+    if "energy bound on the exact stopping time" not in p.stdout or not s["t_arrest"] < s["t_stop_bound_slepc"]:
+        fail("expected a printed bound above the arrest time, got %g vs %g" % (s["t_stop_bound_slepc"], s["t_arrest"]))
+    d = os.path.join(w, "duct")
+    run("duct", ["-viscous_eigenvalue", "-rheology_type", "newtonian", "-output_fields", "0"], d)
+    s = summary(d)
+    rel = abs(s["lambda1"] - 2 * math.pi ** 2) / (2 * math.pi ** 2)
+    print("square duct: lambda1 %.8f (2 pi^2 = %.8f, rel %.1e)" % (s["lambda1"], 2 * math.pi ** 2, rel))
+    if not rel <= 5e-3:
+        fail("duct lambda1 expected within 0.5 %% of 2 pi^2, got %g" % s["lambda1"])
+
+
 def write_gmsh_square(path, n):
     """A Gmsh 2.2 ASCII file of the unit square, n x n squares cut like
     SlumpMeshCreateRectangle, with physical lines bottom/right/top/left."""

@@ -115,6 +115,9 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   c->upper[0] = upper[0];
   c->upper[1] = upper[1];
   if (kind == 1) scene->initial = SteadyInitial;
+  /* 1-D strip: beta = 2/sqrt(H), norms per unit length along the strip */
+  scene->bound_beta       = 2.0 / PetscSqrtReal(c->H);
+  scene->bound_norm_scale = 1.0 / PetscSqrtReal(upper[0] - lower[0]);
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));

@@ -73,7 +73,9 @@ PetscErrorCode SlumpSceneCreate_Duct(SlumpScene scene, SlumpProblem prob, MPI_Co
   PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->G * c->L));
   PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
   PetscCall(SlumpProblemAddVelocityBC(prob, "walls", "boundary", 0, NULL, SlumpZeroVelocity, NULL, NULL));
-  scene->results = Results;
+  scene->results          = Results;
+  scene->bound_beta       = 2.0 * PetscSqrtReal(PETSC_PI); /* scalar 2-D: sharp L1-L2 isoperimetric constant */
+  scene->bound_norm_scale = 1.0;
   PetscCall(SlumpSceneAddParameter(scene, "bn_option", bn));
   PetscFunctionReturn(0);
 }
