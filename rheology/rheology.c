@@ -165,6 +165,14 @@ PetscErrorCode SlumpRheologyGetParameter(SlumpRheology rheo, const char name[], 
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpRheologyCopy(SlumpRheology src, SlumpRheology dst)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologySetType(dst, src->type));
+  for (PetscInt i = 0; i < src->nparam; ++i) dst->param[i].value = src->param[i].value;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpRheologyCheck(SlumpRheology rheo)
 {
   PetscFunctionBeginUser;

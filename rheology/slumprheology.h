@@ -35,6 +35,8 @@ PETSC_EXTERN PetscErrorCode SlumpRheologySetParameter(SlumpRheology rheo, const 
 PETSC_EXTERN PetscErrorCode SlumpRheologyGetParameter(SlumpRheology rheo, const char name[], PetscReal *value);
 PETSC_EXTERN PetscErrorCode SlumpRheologyHasParameter(SlumpRheology rheo, const char name[], PetscBool *has);
 /* Check every parameter against its bounds; one clear sentence if invalid. */
+/* dst takes src's type and every parameter value. */
+PETSC_EXTERN PetscErrorCode SlumpRheologyCopy(SlumpRheology src, SlumpRheology dst);
 PETSC_EXTERN PetscErrorCode SlumpRheologyCheck(SlumpRheology rheo);
 /* Packed parameters for the pointwise kernels' constants. */
 PETSC_EXTERN PetscErrorCode SlumpRheologyGetConstants(SlumpRheology rheo, PetscInt *n, PetscScalar params[]);

@@ -42,7 +42,13 @@ static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
   PetscCall(SlumpProblemAddVelocityBC(p0, "plate_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(p0, "plate_top", "top", 0, NULL, PlateU, NULL, c));
   PetscCall(SlumpSceneChannelEnds(p0));
-  PetscCall(SlumpProblemSetFromOptions(p0)); /* same rheology options as the run */
+  PetscCall(SlumpProblemSetFromOptions(p0));
+  {
+    SlumpRheology r0, r;
+    PetscCall(SlumpProblemGetRheology(prob, &r));
+    PetscCall(SlumpProblemGetRheology(p0, &r0));
+    PetscCall(SlumpRheologyCopy(r, r0)); /* the run's model, scene defaults included */
+  }
   PetscCall(SlumpProblemSetUp(p0));
   PetscCall(SlumpProblemCreateVector(p0, &X0));
   PetscCall(VecGetSize(X0, &n0));

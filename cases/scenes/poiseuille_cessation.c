@@ -1,0 +1,131 @@
+/* Bingham plane Poiseuille cessation (REFERENCES.md).
+ * Channel -H <= y <= H (H = 1), rho = eta_p = 1: the steady Bingham flow
+ * driven by G = 1 (computed by KINSOL, with continuation in the
+ * regularisation from -steady_continuation_start, default 1e2) is the
+ * initial state; at t = 0 the driving force is removed and the flow stops in
+ * finite time. Bn = tau0/(G H) = plug half-width. Energy bound:
+ *   T_stop <= (1/l1) ln(1 + l1 ||u0|| / (tau0 beta)),  l1 = pi^2/(2H)^2,
+ *   beta = 2/sqrt(2H), ||u0|| the L2 norm across the channel
+ * (= (4/pi^2) ln(1 + pi^2 ||u0|| / (4 sqrt(2) Bn)) for H = G = 1). */
+#include "common.h"
+
+typedef struct {
+  PetscReal H, G, lower[2], upper[2];
+} CessationCtx;
+
+static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
+{
+  CessationCtx *c = (CessationCtx *)scene->ctx;
+  SlumpProblem  p0;
+  SlumpStats    st;
+  Vec           X0;
+  MPI_Comm      comm;
+  PetscBool     set;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
+  PetscCall(PetscPrintf(comm, "initial state: steady driven flow (KINSOL)\n"));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
+  if (!set) PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2")); /* scene default */
+  PetscCall(SlumpProblemCreate(comm, &p0));
+  PetscCall(SlumpSceneSetMesh(scene, p0, comm, c->lower, c->upper));
+  PetscCall(SlumpProblemSetEffects(p0, SLUMP_EFFECT_BODY_FORCE));
+  PetscCall(SlumpProblemSetBodyForce(p0, c->G, 0.0));
+  PetscCall(SlumpProblemAddVelocityBC(p0, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpProblemAddVelocityBC(p0, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpSceneChannelEnds(p0));
+  PetscCall(SlumpProblemSetFromOptions(p0));
+  {
+    SlumpRheology r0, r;
+    PetscCall(SlumpProblemGetRheology(prob, &r));
+    PetscCall(SlumpProblemGetRheology(p0, &r0));
+    PetscCall(SlumpRheologyCopy(r, r0)); /* the run's model, scene defaults included */
+  }
+  PetscCall(SlumpProblemSetUp(p0));
+  PetscCall(SlumpProblemCreateVector(p0, &X0));
+  PetscCall(SlumpSteadySolve(p0, X0, &st));
+  PetscCall(VecCopy(X0, X));
+  PetscCall(VecDestroy(&X0));
+  PetscCall(SlumpProblemDestroy(&p0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, Vec X)
+{
+  CessationCtx *c = (CessationCtx *)scene->ctx;
+  SlumpRheology rheo;
+  PetscReal     tau0 = 0.0, etap = 1.0;
+  PetscBool     has;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologyHasParameter(rheo, "yield_stress", &has));
+  if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", &tau0));
+  PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", &etap));
+  PetscCall(SlumpSceneAddResult(scene, "bn", tau0 / (c->G * c->H)));
+  if (tau0 > 0 && scene->nresult && c->H > 0) {
+    /* analytic bound with the initial state's norm across the channel */
+    const PetscReal L = 2.0 * c->H, l1 = PETSC_PI * PETSC_PI / (L * L), beta = 2.0 / PetscSqrtReal(L);
+    PetscReal       u0 = -1;
+    for (PetscInt i = 0; i < scene->nresult; ++i) {
+      PetscBool same;
+      PetscCall(PetscStrcmp(scene->rname[i], "u0_norm", &same));
+      if (same) u0 = scene->rvalue[i];
+    }
+    if (u0 > 0) PetscCall(SlumpSceneAddResult(scene, "t_stop_bound", 1.0 / (etap * l1) * PetscLogReal(1.0 + etap * l1 * u0 / (tau0 * beta))));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* the initial norm, recorded before the run (the estimate needs ||u0||) */
+static PetscErrorCode InitialAndNorm(SlumpScene scene, SlumpProblem prob, Vec X)
+{
+  CessationCtx       *c  = (CessationCtx *)scene->ctx;
+  SlumpDiagnosticKind ke = SLUMP_DIAG_KINETIC_ENERGY;
+  PetscReal           e0;
+  PetscFunctionBeginUser;
+  PetscCall(SteadyInitial(scene, prob, X));
+  PetscCall(SlumpProblemComputeDiagnosticList(prob, 0.0, X, 1, &ke, &e0));
+  PetscCall(SlumpSceneAddResult(scene, "u0_norm", PetscSqrtReal(2.0 * e0) / PetscSqrtReal(c->upper[0] - c->lower[0])));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+{
+  CessationCtx *c;
+  SlumpRheology rheo;
+  PetscReal     bn = 0.5;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  scene->ctx = c;
+  c->H       = 1.0;
+  c->G       = 1.0;
+  PetscOptionsBegin(comm, NULL, "Scene poiseuille_cessation", "");
+  PetscCall(PetscOptionsReal("-bn", "Bingham number tau0/(G H) (plug half-width of the initial flow)", "", bn, &bn, NULL));
+  PetscOptionsEnd();
+  PetscCheck(bn > 0 && bn < 1, comm, PETSC_ERR_USER_INPUT, "-bn must lie in (0, 1) (at Bn >= 1 the initial flow is at rest); got %g", (double)bn);
+  scene->steady           = PETSC_FALSE;
+  scene->tfinal           = 0.5;
+  scene->dtout            = 0.01;
+  scene->arrest_threshold = 1e-3;
+  scene->mesh_n[0]        = 2;
+  scene->mesh_n[1]        = 32;
+  c->lower[0]             = 0.0;
+  c->lower[1]             = -c->H;
+  c->upper[0]             = 0.25;
+  c->upper[1]             = c->H;
+  PetscCall(SlumpSceneSetMesh(scene, prob, comm, c->lower, c->upper));
+  PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA)); /* driving removed */
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
+  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
+  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->G * c->H));
+  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpSceneChannelEnds(prob));
+  scene->initial          = InitialAndNorm;
+  scene->results          = Results;
+  scene->bound_beta       = 2.0 / PetscSqrtReal(2.0 * c->H);
+  scene->bound_norm_scale = 1.0 / PetscSqrtReal(c->upper[0] - c->lower[0]);
+  PetscCall(SlumpSceneAddParameter(scene, "bn_option", bn));
+  PetscFunctionReturn(0);
+}
