@@ -10,6 +10,6 @@ $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends \
   build-essential cmake pkg-config python3 \
   petsc-dev slepc-dev libsundials-dev libmetis-dev \
-  libhdf5-openmpi-dev hdf5-tools libopenmpi-dev openmpi-bin > /dev/null
+  libhdf5-openmpi-dev hdf5-tools libopenmpi-dev openmpi-bin gnuplot-nox > /dev/null
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release > /dev/null
 cmake --build build -j "$(nproc)"
