@@ -49,7 +49,7 @@ set output 'arrest.png'
 set datafile separator ','
 set multiplot layout 2,1 title '%s'
 set logscale y
-set format y '10^{%%L}'
+set format y '1e%%L'
 set grid
 %s
 set ylabel 'step size h'

@@ -603,6 +603,34 @@ def test_poiseuille_cessation():
             fail("kinetic energy increased at t = %g" % r1["t"])
 
 
+def test_arrest_convergence():
+    """Poiseuille cessation (Bn = 0.5): as Papanastasiou m grows 1e2 ... 1e6 the
+    arrest time of every criterion (mean and max shear rate < 1e-3, kinetic
+    energy < 1e-6 x initial, yielded fraction < 1e-3) converges: successive
+    differences shrink, the last one below 2e-4 relative (yielded fraction:
+    1.3e-4, the slowest; mean shear rate 6e-6); for m >= 1e3 every
+    arrest lies below the energy bound (at m = 1e2 the soft model creeps past
+    the exact model's bound: measured 0.1795 > 0.1779 for kinetic energy)."""
+    w = work("arrest_convergence")
+    names = ["mean_shear_rate", "max_shear_rate", "kinetic_energy_relative", "yielded_fraction"]
+    spec = "mean_shear_rate:1e-3,max_shear_rate:1e-3,kinetic_energy:1e-6:relative,yielded_fraction:1e-3"
+    times = {n: [] for n in names}
+    for m in (1e2, 1e3, 1e4, 1e5, 1e6):
+        d = os.path.join(w, "m%g" % m)
+        run("poiseuille_cessation", ["-rheology_papanastasiou_m", "%g" % m, "-arrest", spec, "-time_final", "0.3", "-output_fields", "0"], d)
+        s = summary(d)
+        for n in names:
+            times[n].append(s["t_arrest_" + n])
+            if m >= 1e3 and not s["t_arrest_" + n] < s["t_stop_bound"]:
+                fail("m = %g, %s: arrest %g expected below the bound %g" % (m, n, s["t_arrest_" + n], s["t_stop_bound"]))
+    for n in names:
+        t = times[n]
+        diffs = [abs(t[i + 1] - t[i]) for i in range(len(t) - 1)]
+        print("%-24s %s  differences %s" % (n, " ".join("%.6f" % x for x in t), " ".join("%.1e" % x for x in diffs)))
+        if any(diffs[i + 1] >= diffs[i] for i in range(len(diffs) - 1)) or diffs[-1] > 2e-4 * t[-1]:
+            fail("%s: successive differences expected to shrink to < 2e-4 relative, got %s" % (n, diffs))
+
+
 def write_gmsh_square(path, n):
     """A Gmsh 2.2 ASCII file of the unit square, n x n squares cut like
     SlumpMeshCreateRectangle, with physical lines bottom/right/top/left."""
