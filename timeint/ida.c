@@ -109,6 +109,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   N_Vector        yy, yp, yout, nid;
   SUNMatrix       A;
   SUNLinearSolver LS;
+  SUNNonlinearSolver NLS = NULL;
   IDAUser         user;
   void           *mem;
   realtype        tret;
@@ -145,6 +146,10 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   IDACHECK(IDASetMaxOrd(mem, 2));
   IDACHECK(IDASetMaxNonlinIters(mem, (int)ti->max_nonlin_iters));
   IDACHECK(IDASetNonlinConvCoef(mem, ti->nonlin_conv_coef));
+  if (ti->linesearch) {
+    PetscCall(SlumpSUNNonlinSolLineSearchCreate(ti->prob, X, ctx, &NLS));
+    IDACHECK(IDASetNonlinearSolver(mem, NLS));
+  }
   if (ti->exact_newton) {
     PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, ExactAssemble, &user));
     IDACHECK(IDASetLinearSolutionScaling(mem, SUNFALSE));
@@ -199,6 +204,10 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       IDAGetNumErrTestFails(mem, &netf);
       IDAGetNumNonlinSolvConvFails(mem, &ncfn);
       PetscCall(SlumpSUNLinSolGetCounts(LS, &nsolves, &nli));
+      if (NLS) {
+        PetscCall(SlumpSUNNonlinSolLineSearchGetLinearIterations(NLS, &nli));
+        nsolves = nli;
+      }
       r.t              = tret;
       r.h              = h;
       r.order          = q;
@@ -232,6 +241,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
     if (tret >= ti->tfinal * (1 - 1e-14)) break;
   }
   IDAFree(&mem);
+  if (NLS) SUNNonlinSolFree(NLS);
   SUNLinSolFree(LS);
   SUNMatDestroy(A);
   N_VDestroy(yy);

@@ -236,6 +236,12 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCall(PetscOptionsReal("-time_rtol", "Relative tolerance (ida)", "", ti->rtol, &ti->rtol, NULL));
   PetscCall(PetscOptionsReal("-time_atol", "Absolute tolerance (ida)", "", ti->atol, &ti->atol, NULL));
   PetscCall(PetscOptionsReal("-time_dt", "Time step (bdf2); first step (ida, 0: IDA's choice)", "", ti->dt, &ti->dt, NULL));
+  {
+    const char *kinds[] = {"newton", "linesearch"};
+    PetscInt    k       = ti->linesearch ? 1 : 0;
+    PetscCall(PetscOptionsEList("-ida_nonlinear_solver", "IDA's per-step nonlinear solver: newton (IDA's modified Newton) or linesearch (KINSOL, exact Jacobian, line search)", "", kinds, 2, kinds[k], &k, NULL));
+    ti->linesearch = k == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(PetscOptionsBool("-ida_exact_newton", "IDA: re-assemble the Jacobian at every Newton iterate (default: IDA's modified Newton)", "", ti->exact_newton, &ti->exact_newton, NULL));
   PetscCall(PetscOptionsReal("-ida_nonlin_conv_coef", "IDA: Newton stops when the correction is below this fraction of the error tolerance", "", ti->nonlin_conv_coef, &ti->nonlin_conv_coef, NULL));
   PetscCall(PetscOptionsInt("-ida_max_nonlin_iters", "IDA: Newton iterations per step before the step is cut", "", ti->max_nonlin_iters, &ti->max_nonlin_iters, NULL));

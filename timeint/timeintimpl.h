@@ -6,6 +6,7 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 #include <nvector/nvector_petsc.h>
+#include <sundials/sundials_nonlinearsolver.h>
 
 /* A SUNMatrix that only carries a PETSc Mat (assembled by the problem). */
 PETSC_INTERN SUNMatrix       SlumpSUNMatCreate(Mat J, SUNContext ctx);
@@ -39,7 +40,7 @@ struct _n_SlumpIntegrator {
   SlumpIntegratorType  type;
   PetscReal            t0, tfinal, dtout, rtol, atol, dt, t, h_last;
   PetscInt             order_last, max_steps, max_nonlin_iters;
-  PetscBool            exact_newton;
+  PetscBool            exact_newton, linesearch;
   PetscReal            nonlin_conv_coef;
   PetscInt             narrest;
   SlumpArrestCriterion arrest[16];
@@ -58,5 +59,8 @@ PETSC_INTERN PetscErrorCode SlumpIntegratorResolveArrest(SlumpIntegrator, PetscR
 PETSC_INTERN PetscErrorCode SlumpIntegratorArrestFunctions(SlumpIntegrator, PetscReal t, Vec X, PetscReal g[]);
 /* Record criterion k's arrest at t; returns whether the run should stop. */
 PETSC_INTERN PetscBool      SlumpIntegratorArrestRecord(SlumpIntegrator, PetscInt k, PetscReal t);
+/* IDA's nonlinear solver replaced by KINSOL with a line search per stage. */
+PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchCreate(SlumpProblem, Vec X, SUNContext, SUNNonlinearSolver *);
+PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchGetLinearIterations(SUNNonlinearSolver, PetscInt *);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator, Vec);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator, Vec);
