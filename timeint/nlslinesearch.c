@@ -12,7 +12,7 @@
 typedef struct {
   SlumpImplicitSolver s;
   Vec                 y, beta;
-  long int            nits, nconvfails, lastits;
+  long int            nits, nconvfails, lastits, lastfail;
   PetscInt            nlin;
 } NLSContent;
 
@@ -44,6 +44,7 @@ static int NLSSolve(SUNNonlinearSolver NLS, N_Vector y0, N_Vector ycor, N_Vector
   NLSContent *c    = (NLSContent *)NLS->content;
   PetscBool   conv = PETSC_FALSE;
   if (SlumpSundialsStatus(NLSSolve_Private(c, y0, ycor, mem, &conv))) return SUN_NLS_EXT_FAIL;
+  c->lastfail = conv ? 0 : 1;
   if (!conv) {
     c->nconvfails++;
     return SUN_NLS_CONV_RECVR;
@@ -82,9 +83,10 @@ static int NLSGetCurIter(SUNNonlinearSolver NLS, int *iter)
   *iter = 0;
   return SUN_NLS_SUCCESS;
 }
+/* likewise, per solve */
 static int NLSGetNumConvFails(SUNNonlinearSolver NLS, long int *n)
 {
-  *n = ((NLSContent *)NLS->content)->nconvfails;
+  *n = ((NLSContent *)NLS->content)->lastfail;
   return SUN_NLS_SUCCESS;
 }
 static int NLSFree(SUNNonlinearSolver NLS)
