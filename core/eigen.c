@@ -32,7 +32,6 @@ PetscErrorCode SlumpProblemComputeViscousEigenvalue(SlumpProblem prob, PetscReal
   EPS           eps;
   ST            st;
   KSP           ksp;
-  PC            pc;
   PetscInt      nconv;
   PetscScalar   kr, ki;
   PetscFunctionBeginUser;
@@ -57,12 +56,7 @@ PetscErrorCode SlumpProblemComputeViscousEigenvalue(SlumpProblem prob, PetscReal
   PetscCall(EPSGetST(eps, &st));
   PetscCall(STSetType(st, STSINVERT));
   PetscCall(STGetKSP(st, &ksp));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-#if defined(PETSC_HAVE_MUMPS)
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-#endif
+  PetscCall(SlumpKSPSetDirect(ksp));
   PetscCall(EPSSetFromOptions(eps));
   PetscCall(EPSSolve(eps));
   PetscCall(EPSGetConverged(eps, &nconv));

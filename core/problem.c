@@ -676,3 +676,17 @@ PetscErrorCode SlumpProblemGetArea(SlumpProblem prob, PetscReal *area)
   *area = prob->area;
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode SlumpKSPSetDirect(KSP ksp)
+{
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(KSPSetType(ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PCSetType(pc, PCLU));
+#if defined(PETSC_HAVE_MUMPS)
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+#endif
+  PetscCall(KSPSetFromOptions(ksp));
+  PetscFunctionReturn(0);
+}

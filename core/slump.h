@@ -162,5 +162,9 @@ PETSC_EXTERN PetscErrorCode SlumpFieldWriterCreate(SlumpProblem prob, const char
 PETSC_EXTERN PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X);
 PETSC_EXTERN PetscErrorCode SlumpFieldWriterDestroy(SlumpFieldWriter *w);
 
+/* A KSP as a direct solver: preonly + LU (MUMPS when PETSc has it), then
+   the options database under the KSP's prefix. */
+PETSC_EXTERN PetscErrorCode SlumpKSPSetDirect(KSP ksp);
+
 /* Make a directory and its parents (rank 0; collective). */
 PETSC_EXTERN PetscErrorCode SlumpMakeDirectory(MPI_Comm comm, const char dir[]);

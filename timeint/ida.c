@@ -46,7 +46,6 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
   Vec                F, W, sub, subw;
   Mat                J;
   KSP                ksp;
-  PC                 pc;
   IS                 isu, isp;
   KSPConvergedReason reason;
   PetscFunctionBeginUser;
@@ -69,13 +68,7 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
   PetscCall(SlumpProblemInitJacobian(prob, t, X, J));
   PetscCall(KSPCreate(PetscObjectComm((PetscObject)X), &ksp));
   PetscCall(KSPSetOptionsPrefix(ksp, "ic_"));
-  PetscCall(KSPSetType(ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PCSetType(pc, PCLU));
-#if defined(PETSC_HAVE_MUMPS)
-  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-#endif
-  PetscCall(KSPSetFromOptions(ksp));
+  PetscCall(SlumpKSPSetDirect(ksp));
   PetscCall(KSPSetOperators(ksp, J, J));
   PetscCall(KSPSolve(ksp, F, W));
   PetscCall(KSPGetConvergedReason(ksp, &reason));

@@ -156,7 +156,6 @@ SUNLinearSolver SlumpSUNLinSolCreate(MPI_Comm comm, Mat J, SUNContext ctx)
 {
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   LSContent      *c = (LSContent *)calloc(1, sizeof(LSContent));
-  PC              pc;
   if (!S || !c) return NULL;
   S->content          = c;
   S->ops->gettype     = LSGetType;
@@ -169,13 +168,7 @@ SUNLinearSolver SlumpSUNLinSolCreate(MPI_Comm comm, Mat J, SUNContext ctx)
   S->ops->free        = LSFree;
   c->J                = J;
   if (KSPCreate(comm, &c->ksp)) return NULL;
-  if (KSPSetType(c->ksp, KSPPREONLY)) return NULL;
-  if (KSPGetPC(c->ksp, &pc)) return NULL;
-  if (PCSetType(pc, PCLU)) return NULL;
-#if defined(PETSC_HAVE_MUMPS)
-  if (PCFactorSetMatSolverType(pc, MATSOLVERMUMPS)) return NULL;
-#endif
-  if (KSPSetFromOptions(c->ksp)) return NULL;
+  if (SlumpKSPSetDirect(c->ksp)) return NULL;
   return S;
 }
 

@@ -30,3 +30,52 @@ static inline PetscErrorCode SlumpSceneChannelEnds(SlumpProblem prob)
   PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "right", 1, &compy, SlumpZeroVelocity, NULL, NULL));
   PetscFunctionReturn(0);
 }
+
+/* tau0 (0 without a yield stress) and eta_p (1 without a "viscosity") of the model in force. */
+static inline PetscErrorCode SlumpSceneYieldParameters(SlumpProblem prob, PetscReal *tau0, PetscReal *etap)
+{
+  SlumpRheology rheo;
+  PetscBool     has;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  *tau0 = 0.0;
+  *etap = 1.0;
+  PetscCall(SlumpRheologyHasParameter(rheo, "yield_stress", &has));
+  if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", tau0));
+  PetscCall(SlumpRheologyHasParameter(rheo, "viscosity", &has));
+  if (has) PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", etap));
+  PetscFunctionReturn(0);
+}
+
+/* A steady state on the scene's mesh, by KINSOL, as the initial state X of a
+   run: a helper problem with the run's rheology (scene defaults included),
+   made by `configure` (effects, body force, boundary conditions); its
+   unknowns have the layout of X. */
+static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, SlumpProblem prob, const PetscReal lower[2], const PetscReal upper[2], PetscErrorCode (*configure)(SlumpScene, SlumpProblem), Vec X)
+{
+  SlumpProblem  p0;
+  SlumpStats    st;
+  SlumpRheology r0, r;
+  Vec           X0;
+  MPI_Comm      comm;
+  PetscInt      n0, n;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
+  PetscCall(SlumpProblemCreate(comm, &p0));
+  PetscCall(SlumpSceneSetMesh(scene, p0, comm, lower, upper));
+  PetscCall(configure(scene, p0));
+  PetscCall(SlumpProblemSetFromOptions(p0));
+  PetscCall(SlumpProblemGetRheology(prob, &r));
+  PetscCall(SlumpProblemGetRheology(p0, &r0));
+  PetscCall(SlumpRheologyCopy(r, r0));
+  PetscCall(SlumpProblemSetUp(p0));
+  PetscCall(SlumpProblemCreateVector(p0, &X0));
+  PetscCall(VecGetSize(X0, &n0));
+  PetscCall(VecGetSize(X, &n));
+  PetscCheck(n0 == n, comm, PETSC_ERR_PLIB, "Steady and transient problems have different layouts");
+  PetscCall(SlumpSteadySolve(p0, X0, &st));
+  PetscCall(VecCopy(X0, X));
+  PetscCall(VecDestroy(&X0));
+  PetscCall(SlumpProblemDestroy(&p0));
+  PetscFunctionReturn(0);
+}

@@ -23,41 +23,23 @@ static PetscErrorCode PlateU(PetscInt dim, PetscReal t, const PetscReal x[], Pet
   return 0;
 }
 
-/* Steady Couette flow with the top plate moving, by KINSOL, on a second
-   problem built on the same mesh: its unknowns have the same layout. */
-static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
+/* The steady flow with the top plate moving (no inertia). */
+static PetscErrorCode ConfigureDriven(SlumpScene scene, SlumpProblem p0)
 {
-  CouetteCtx   *c = (CouetteCtx *)scene->ctx;
-  SlumpProblem  p0;
-  SlumpStats    st;
-  Vec           X0;
-  MPI_Comm      comm;
-  PetscInt      n0, n;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
-  PetscCall(PetscPrintf(comm, "initial state: steady flow with the plate moving (KINSOL)\n"));
-  PetscCall(SlumpProblemCreate(comm, &p0));
-  PetscCall(SlumpSceneSetMesh(scene, p0, comm, c->lower, c->upper));
   PetscCall(SlumpProblemSetEffects(p0, 0));
   PetscCall(SlumpProblemAddVelocityBC(p0, "plate_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
-  PetscCall(SlumpProblemAddVelocityBC(p0, "plate_top", "top", 0, NULL, PlateU, NULL, c));
+  PetscCall(SlumpProblemAddVelocityBC(p0, "plate_top", "top", 0, NULL, PlateU, NULL, scene->ctx));
   PetscCall(SlumpSceneChannelEnds(p0));
-  PetscCall(SlumpProblemSetFromOptions(p0));
-  {
-    SlumpRheology r0, r;
-    PetscCall(SlumpProblemGetRheology(prob, &r));
-    PetscCall(SlumpProblemGetRheology(p0, &r0));
-    PetscCall(SlumpRheologyCopy(r, r0)); /* the run's model, scene defaults included */
-  }
-  PetscCall(SlumpProblemSetUp(p0));
-  PetscCall(SlumpProblemCreateVector(p0, &X0));
-  PetscCall(VecGetSize(X0, &n0));
-  PetscCall(VecGetSize(X, &n));
-  PetscCheck(n0 == n, comm, PETSC_ERR_PLIB, "Steady and transient problems have different layouts");
-  PetscCall(SlumpSteadySolve(p0, X0, &st));
-  PetscCall(VecCopy(X0, X));
-  PetscCall(VecDestroy(&X0));
-  PetscCall(SlumpProblemDestroy(&p0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
+{
+  CouetteCtx *c = (CouetteCtx *)scene->ctx;
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)X), "initial state: steady flow with the plate moving (KINSOL)\n"));
+  PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, X));
   PetscFunctionReturn(0);
 }
 
@@ -71,15 +53,10 @@ static PetscErrorCode InitialU(PetscInt dim, PetscReal t, const PetscReal x[], P
 
 static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, Vec X)
 {
-  SlumpRheology rheo;
-  PetscReal     tau0 = 0.0, etap, rho = 1.0;
-  PetscBool     has;
-  CouetteCtx   *c = (CouetteCtx *)scene->ctx;
+  PetscReal   tau0, etap, rho = 1.0;
+  CouetteCtx *c = (CouetteCtx *)scene->ctx;
   PetscFunctionBeginUser;
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", &etap));
-  PetscCall(SlumpRheologyHasParameter(rheo, "yield_stress", &has));
-  if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", &tau0));
+  PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-density", &rho, NULL));
   if (tau0 > 0) {
     /* energy bound in the scene's units: time scale rho H^2 / eta_p */

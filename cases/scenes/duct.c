@@ -26,15 +26,9 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
 {
   DuctCtx         *c = (DuctCtx *)scene->ctx;
   SlumpDiagnostics d;
-  SlumpRheology    rheo;
-  PetscReal        tau0 = 0.0, etap = 1.0;
-  PetscBool        has;
+  PetscReal        tau0, etap;
   PetscFunctionBeginUser;
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologyHasParameter(rheo, "yield_stress", &has));
-  if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", &tau0));
-  PetscCall(SlumpRheologyHasParameter(rheo, "viscosity", &has));
-  if (has) PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", &etap));
+  PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));
   PetscCall(SlumpProblemComputeDiagnostics(prob, t, X, &d));
   PetscCall(SlumpSceneAddResult(scene, "bn", tau0 / (c->G * c->L)));
   PetscCall(SlumpSceneAddResult(scene, "bn_critical", 1.0 / (2.0 + PetscSqrtReal(PETSC_PI))));

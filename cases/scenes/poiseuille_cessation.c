@@ -13,53 +13,37 @@ typedef struct {
   PetscReal H, G, lower[2], upper[2];
 } CessationCtx;
 
-static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
+/* The steady flow driven by G (no inertia). */
+static PetscErrorCode ConfigureDriven(SlumpScene scene, SlumpProblem p0)
 {
   CessationCtx *c = (CessationCtx *)scene->ctx;
-  SlumpProblem  p0;
-  SlumpStats    st;
-  Vec           X0;
-  MPI_Comm      comm;
-  PetscBool     set;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
-  PetscCall(PetscPrintf(comm, "initial state: steady driven flow (KINSOL)\n"));
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2")); /* scene default */
-  PetscCall(SlumpProblemCreate(comm, &p0));
-  PetscCall(SlumpSceneSetMesh(scene, p0, comm, c->lower, c->upper));
   PetscCall(SlumpProblemSetEffects(p0, SLUMP_EFFECT_BODY_FORCE));
   PetscCall(SlumpProblemSetBodyForce(p0, c->G, 0.0));
   PetscCall(SlumpProblemAddVelocityBC(p0, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(p0, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpSceneChannelEnds(p0));
-  PetscCall(SlumpProblemSetFromOptions(p0));
-  {
-    SlumpRheology r0, r;
-    PetscCall(SlumpProblemGetRheology(prob, &r));
-    PetscCall(SlumpProblemGetRheology(p0, &r0));
-    PetscCall(SlumpRheologyCopy(r, r0)); /* the run's model, scene defaults included */
-  }
-  PetscCall(SlumpProblemSetUp(p0));
-  PetscCall(SlumpProblemCreateVector(p0, &X0));
-  PetscCall(SlumpSteadySolve(p0, X0, &st));
-  PetscCall(VecCopy(X0, X));
-  PetscCall(VecDestroy(&X0));
-  PetscCall(SlumpProblemDestroy(&p0));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
+{
+  CessationCtx *c = (CessationCtx *)scene->ctx;
+  PetscBool     set;
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)X), "initial state: steady driven flow (KINSOL)\n"));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
+  if (!set) PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2")); /* scene default */
+  PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, X));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, Vec X)
 {
   CessationCtx *c = (CessationCtx *)scene->ctx;
-  SlumpRheology rheo;
-  PetscReal     tau0 = 0.0, etap = 1.0;
-  PetscBool     has;
+  PetscReal     tau0, etap;
   PetscFunctionBeginUser;
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologyHasParameter(rheo, "yield_stress", &has));
-  if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", &tau0));
-  PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", &etap));
+  PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));
   PetscCall(SlumpSceneAddResult(scene, "bn", tau0 / (c->G * c->H)));
   if (tau0 > 0 && scene->nresult && c->H > 0) {
     /* analytic bound with the initial state's norm across the channel */
