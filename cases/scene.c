@@ -19,6 +19,8 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_VerticalChute(SlumpScene, SlumpProb
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Bagnold(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Duct(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DuctCessation(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CavityCessation(SlumpScene, SlumpProblem, MPI_Comm);
 
 PetscErrorCode SlumpSceneRegister(const char name[], const char description[], SlumpSceneCreateFn create)
 {
@@ -36,6 +38,8 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   if (nscenes) PetscFunctionReturn(0);
   PetscCall(SlumpSceneRegister("couette_cessation", "Bingham plane Couette flow, top plate stopped at t = 0 (the demo): adaptive BDF2 to arrest", SlumpSceneCreate_CouetteCessation));
   PetscCall(SlumpSceneRegister("poiseuille_cessation", "Bingham plane Poiseuille flow (steady state by KINSOL), driving removed at t = 0: arrest and energy bound", SlumpSceneCreate_PoiseuilleCessation));
+  PetscCall(SlumpSceneRegister("duct_cessation", "anti-plane Bingham flow in a square duct (steady state by KINSOL), pressure gradient removed at t = 0", SlumpSceneCreate_DuctCessation));
+  PetscCall(SlumpSceneRegister("cavity_cessation", "Bingham lid-driven cavity (steady state by KINSOL), lid stopped at t = 0; enclosed flow", SlumpSceneCreate_CavityCessation));
   PetscCall(SlumpSceneRegister("poiseuille", "steady Bingham plane Poiseuille flow driven by a pressure gradient; analytic solution", SlumpSceneCreate_Poiseuille));
   PetscCall(SlumpSceneRegister("decay", "Newtonian flow between plates decaying as sin(pi y) exp(-pi^2 nu t); analytic solution", SlumpSceneCreate_Decay));
   PetscCall(SlumpSceneRegister("couette_startup", "Newtonian Couette start-up, top plate accelerating as 1 - exp(-t/tau); exact series solution", SlumpSceneCreate_CouetteStartup));

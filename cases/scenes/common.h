@@ -50,8 +50,9 @@ static inline PetscErrorCode SlumpSceneYieldParameters(SlumpProblem prob, PetscR
 /* A steady state on the scene's mesh, by KINSOL, as the initial state X of a
    run: a helper problem with the run's rheology (scene defaults included),
    made by `configure` (effects, body force, boundary conditions); its
-   unknowns have the layout of X. */
-static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, SlumpProblem prob, const PetscReal lower[2], const PetscReal upper[2], PetscErrorCode (*configure)(SlumpScene, SlumpProblem), Vec X)
+   unknowns have the layout of X. With `newtonian`, the fluid of the helper
+   problem is Newtonian with the run's plastic viscosity eta_p instead. */
+static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, SlumpProblem prob, const PetscReal lower[2], const PetscReal upper[2], PetscErrorCode (*configure)(SlumpScene, SlumpProblem), PetscBool newtonian, Vec X)
 {
   SlumpProblem  p0;
   SlumpStats    st;
@@ -68,6 +69,7 @@ static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, Slum
   PetscCall(SlumpProblemGetRheology(prob, &r));
   PetscCall(SlumpProblemGetRheology(p0, &r0));
   PetscCall(SlumpRheologyCopy(r, r0));
+  if (newtonian) PetscCall(SlumpRheologySetType(r0, SLUMP_RHEOLOGY_NEWTONIAN)); /* keeps "viscosity" */
   PetscCall(SlumpProblemSetUp(p0));
   PetscCall(SlumpProblemCreateVector(p0, &X0));
   PetscCall(VecGetSize(X0, &n0));
@@ -77,5 +79,37 @@ static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, Slum
   PetscCall(VecCopy(X0, X));
   PetscCall(VecDestroy(&X0));
   PetscCall(SlumpProblemDestroy(&p0));
+  PetscFunctionReturn(0);
+}
+
+/* -initial_flow material|newtonian: the steady flow before t = 0 in the
+   cessation scenes is that of the scene's material (default) or of a
+   Newtonian fluid with its plastic viscosity (then any Bingham number has
+   a moving initial state). */
+static inline PetscErrorCode SlumpSceneInitialFlowOption(MPI_Comm comm, PetscBool *newtonian)
+{
+  const char *kinds[] = {"material", "newtonian"};
+  PetscInt    kind    = 0;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "Initial flow of the cessation scenes", "");
+  PetscCall(PetscOptionsEList("-initial_flow", "Steady flow before t = 0: of the material, or of a Newtonian fluid with its plastic viscosity", "", kinds, 2, kinds[kind], &kind, NULL));
+  PetscOptionsEnd();
+  *newtonian = kind == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+/* The value of a result already added (found = PETSC_FALSE if there is none). */
+static inline PetscErrorCode SlumpSceneGetResult(SlumpScene scene, const char name[], PetscReal *value, PetscBool *found)
+{
+  PetscFunctionBeginUser;
+  *found = PETSC_FALSE;
+  for (PetscInt i = 0; i < scene->nresult; ++i) {
+    PetscBool same;
+    PetscCall(PetscStrcmp(scene->rname[i], name, &same));
+    if (same) {
+      *value = scene->rvalue[i];
+      *found = PETSC_TRUE;
+    }
+  }
   PetscFunctionReturn(0);
 }

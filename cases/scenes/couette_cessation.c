@@ -39,7 +39,7 @@ static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
   CouetteCtx *c = (CouetteCtx *)scene->ctx;
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(PetscObjectComm((PetscObject)X), "initial state: steady flow with the plate moving (KINSOL)\n"));
-  PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, X));
+  PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, PETSC_FALSE, X));
   PetscFunctionReturn(0);
 }
 

@@ -3,7 +3,10 @@
  * driven by G = 1 (computed by KINSOL, with continuation in the
  * regularisation from -steady_continuation_start, default 1e2) is the
  * initial state; at t = 0 the driving force is removed and the flow stops in
- * finite time. Bn = tau0/(G H) = plug half-width. Energy bound:
+ * finite time. Bn = tau0/(G H) = plug half-width of the initial flow, so
+ * Bn < 1. With -initial_flow newtonian the initial state is the Newtonian
+ * flow under G (any Bn > 0). Reported: bn_mean = tau0 H/(eta_p U0), U0 the
+ * initial mean velocity (flux through "right" / 2H). Energy bound:
  *   T_stop <= (1/l1) ln(1 + l1 ||u0|| / (tau0 beta)),  l1 = pi^2/(2H)^2,
  *   beta = 2/sqrt(2H), ||u0|| the L2 norm across the channel
  * (= (4/pi^2) ln(1 + pi^2 ||u0|| / (4 sqrt(2) Bn)) for H = G = 1). */
@@ -11,6 +14,7 @@
 
 typedef struct {
   PetscReal H, G, lower[2], upper[2];
+  PetscBool newtonian; /* initial flow of a Newtonian fluid */
 } CessationCtx;
 
 /* The steady flow driven by G (no inertia). */
@@ -31,10 +35,10 @@ static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
   CessationCtx *c = (CessationCtx *)scene->ctx;
   PetscBool     set;
   PetscFunctionBeginUser;
-  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)X), "initial state: steady driven flow (KINSOL)\n"));
+  PetscCall(PetscPrintf(PetscObjectComm((PetscObject)X), "initial state: steady driven flow of %s (KINSOL)\n", c->newtonian ? "a Newtonian fluid" : "the material"));
   PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
   if (!set) PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2")); /* scene default */
-  PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, X));
+  PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, c->newtonian, X));
   PetscFunctionReturn(0);
 }
 
@@ -48,13 +52,10 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
   if (tau0 > 0 && scene->nresult && c->H > 0) {
     /* analytic bound with the initial state's norm across the channel */
     const PetscReal L = 2.0 * c->H, l1 = PETSC_PI * PETSC_PI / (L * L), beta = 2.0 / PetscSqrtReal(L);
-    PetscReal       u0 = -1;
-    for (PetscInt i = 0; i < scene->nresult; ++i) {
-      PetscBool same;
-      PetscCall(PetscStrcmp(scene->rname[i], "u0_norm", &same));
-      if (same) u0 = scene->rvalue[i];
-    }
-    if (u0 > 0) PetscCall(SlumpSceneAddResult(scene, "t_stop_bound", 1.0 / (etap * l1) * PetscLogReal(1.0 + etap * l1 * u0 / (tau0 * beta))));
+    PetscReal       u0 = 0.0;
+    PetscBool       found;
+    PetscCall(SlumpSceneGetResult(scene, "u0_norm", &u0, &found));
+    if (found && u0 > 0) PetscCall(SlumpSceneAddResult(scene, "t_stop_bound", 1.0 / (etap * l1) * PetscLogReal(1.0 + etap * l1 * u0 / (tau0 * beta))));
   }
   PetscFunctionReturn(0);
 }
@@ -62,13 +63,16 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
 /* the initial norm, recorded before the run (the estimate needs ||u0||) */
 static PetscErrorCode InitialAndNorm(SlumpScene scene, SlumpProblem prob, Vec X)
 {
-  CessationCtx       *c  = (CessationCtx *)scene->ctx;
-  SlumpDiagnosticKind ke = SLUMP_DIAG_KINETIC_ENERGY;
-  PetscReal           e0;
+  CessationCtx    *c = (CessationCtx *)scene->ctx;
+  SlumpDiagnostics d;
+  PetscReal        tau0, etap;
   PetscFunctionBeginUser;
   PetscCall(SteadyInitial(scene, prob, X));
-  PetscCall(SlumpProblemComputeDiagnosticList(prob, 0.0, X, 1, &ke, &e0));
-  PetscCall(SlumpSceneAddResult(scene, "u0_norm", PetscSqrtReal(2.0 * e0) / PetscSqrtReal(c->upper[0] - c->lower[0])));
+  PetscCall(SlumpProblemComputeDiagnostics(prob, 0.0, X, &d));
+  PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));
+  PetscCall(SlumpSceneAddResult(scene, "u0_norm", PetscSqrtReal(2.0 * d.kinetic_energy) / PetscSqrtReal(c->upper[0] - c->lower[0])));
+  PetscCall(SlumpSceneAddResult(scene, "u0_mean", d.flow_rate / (2.0 * c->H)));
+  if (d.flow_rate > 0) PetscCall(SlumpSceneAddResult(scene, "bn_mean", tau0 * c->H / (etap * d.flow_rate / (2.0 * c->H))));
   PetscFunctionReturn(0);
 }
 
@@ -85,7 +89,9 @@ PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProbl
   PetscOptionsBegin(comm, NULL, "Scene poiseuille_cessation", "");
   PetscCall(PetscOptionsReal("-bn", "Bingham number tau0/(G H) (plug half-width of the initial flow)", "", bn, &bn, NULL));
   PetscOptionsEnd();
-  PetscCheck(bn > 0 && bn < 1, comm, PETSC_ERR_USER_INPUT, "-bn must lie in (0, 1) (at Bn >= 1 the initial flow is at rest); got %g", (double)bn);
+  PetscCall(SlumpSceneInitialFlowOption(comm, &c->newtonian));
+  if (c->newtonian) PetscCheck(bn > 0, comm, PETSC_ERR_USER_INPUT, "-bn must be positive; got %g", (double)bn);
+  else PetscCheck(bn > 0 && bn < 1, comm, PETSC_ERR_USER_INPUT, "-bn must lie in (0, 1) (at Bn >= 1 the initial flow is at rest; -initial_flow newtonian allows any Bn > 0); got %g", (double)bn);
   scene->steady           = PETSC_FALSE;
   scene->tfinal           = 0.5;
   scene->dtout            = 0.01;
@@ -106,6 +112,7 @@ PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProbl
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpSceneChannelEnds(prob));
+  PetscCall(SlumpProblemSetFlowRateBoundary(prob, "right"));
   scene->initial          = InitialAndNorm;
   scene->results          = Results;
   scene->bound_beta       = 2.0 / PetscSqrtReal(2.0 * c->H);
