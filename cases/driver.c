@@ -53,7 +53,12 @@ static PetscErrorCode StepMonitor(SlumpIntegrator ti, const SlumpStepRecord *s, 
   PetscFunctionBeginUser;
   r->newton_since += s->newton_its;
   r->lin_since += s->lin_its;
-  if (r->steps) fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails);
+  if (r->steps) {
+    SlumpDiagnosticKind ke = SLUMP_DIAG_KINETIC_ENERGY;
+    PetscReal           e;
+    PetscCall(SlumpProblemComputeDiagnosticList(r->prob, s->t, s->X, 1, &ke, &e));
+    fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d,%.12e\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails, (double)e);
+  }
   PetscFunctionReturn(0);
 }
 
@@ -183,7 +188,7 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
   /* --- outputs --- */
   PetscCall(SlumpMakeDirectory(comm, dir));
   PetscCall(OpenCSV(&r, dir, "series.csv", "t,kinetic_energy,mean_shear_rate,max_shear_rate,l2_shear_rate,dissipation,yielded_fraction,flow_rate", &r.series));
-  if (!scene->steady) PetscCall(OpenCSV(&r, dir, "steps.csv", "t,h,order,newton_its,lin_its,err_test_fails,conv_fails", &r.steps));
+  if (!scene->steady) PetscCall(OpenCSV(&r, dir, "steps.csv", "t,h,order,newton_its,lin_its,err_test_fails,conv_fails,kinetic_energy", &r.steps));
   if (fields) PetscCall(SlumpFieldWriterCreate(prob, dir, &r.writer));
 
   /* --- run --- */

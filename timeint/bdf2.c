@@ -60,7 +60,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     PetscCall(SlumpImplicitSolverSolve(s, tn1, alpha, beta, X, &conv, &nits, &lits));
     PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g; reduce -time_dt", (double)tn1);
     {
-      SlumpStepRecord r = {tn1, dt, n == 0 ? 1 : 2, nits, lits, 0, 0};
+      SlumpStepRecord r = {tn1, dt, n == 0 ? 1 : 2, nits, lits, 0, 0, X};
       ti->stats.steps++;
       ti->stats.h_min = dt;
       ti->stats.h_max = dt;

@@ -41,6 +41,13 @@ static int IdaRoot(realtype t, N_Vector yy, N_Vector yp, realtype *gout, void *u
   return SlumpSundialsStatus(SlumpIntegratorArrestFunctions(u->ti, t, N_VGetVector_Petsc(yy), gout));
 }
 
+/* Consistent initial data for the index-2 DAE, with one saddle-point
+ * operator [rho M, B^T; B, 0] (SlumpProblemInitJacobian), factored once:
+ * 1. if the velocity violates the discrete continuity equation with the
+ *    boundary data at t (an impulsive change of wall velocity, e.g. a lid
+ *    stopped at t = 0), project it: rho M du + B^T phi = 0, B du = -F_p(u);
+ *    this is the impulsive response of an incompressible fluid;
+ * 2. rho M u' + B^T p = -F_u(u), B u' = 0 gives u'0 and p0. */
 PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
 {
   Vec                F, W, sub, subw;
@@ -48,6 +55,7 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
   KSP                ksp;
   IS                 isu, isp;
   KSPConvergedReason reason;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)X);
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemGetFieldIS(prob, &isu, &isp));
   if (isp) {
@@ -57,6 +65,33 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
   }
   PetscCall(VecDuplicate(X, &F));
   PetscCall(VecDuplicate(X, &W));
+  PetscCall(SlumpProblemCreateMatrix(prob, &J));
+  PetscCall(SlumpProblemInitJacobian(prob, t, X, J));
+  PetscCall(KSPCreate(comm, &ksp));
+  PetscCall(KSPSetOptionsPrefix(ksp, "ic_"));
+  PetscCall(SlumpKSPSetDirect(ksp));
+  PetscCall(KSPSetOperators(ksp, J, J));
+  if (isp) {
+    PetscReal nf, nu, ndu;
+    PetscCall(SlumpProblemResidual(prob, t, X, NULL, F));
+    PetscCall(VecGetSubVector(F, isu, &sub));
+    PetscCall(VecZeroEntries(sub));
+    PetscCall(VecRestoreSubVector(F, isu, &sub));
+    PetscCall(VecNorm(F, NORM_INFINITY, &nf));
+    if (nf > 0) {
+      PetscCall(VecScale(F, -1.0));
+      PetscCall(KSPSolve(ksp, F, W));
+      PetscCall(KSPGetConvergedReason(ksp, &reason));
+      PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The divergence-free projection of the initial velocity failed (KSP reason %s)", KSPConvergedReasons[reason]);
+      PetscCall(VecGetSubVector(W, isp, &subw));
+      PetscCall(VecZeroEntries(subw));
+      PetscCall(VecRestoreSubVector(W, isp, &subw));
+      PetscCall(VecNorm(W, NORM_2, &ndu));
+      PetscCall(VecNorm(X, NORM_2, &nu));
+      PetscCall(VecAXPY(X, 1.0, W));
+      PetscCall(PetscInfo(NULL, "initial velocity projected onto discretely divergence-free fields: |du|/|u| = %g\n", (double)(nu > 0 ? ndu / nu : ndu)));
+    }
+  }
   PetscCall(SlumpProblemResidual(prob, t, X, NULL, F));
   if (isp) {
     PetscCall(VecGetSubVector(F, isp, &sub));
@@ -64,15 +99,9 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
     PetscCall(VecRestoreSubVector(F, isp, &sub));
   }
   PetscCall(VecScale(F, -1.0));
-  PetscCall(SlumpProblemCreateMatrix(prob, &J));
-  PetscCall(SlumpProblemInitJacobian(prob, t, X, J));
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)X), &ksp));
-  PetscCall(KSPSetOptionsPrefix(ksp, "ic_"));
-  PetscCall(SlumpKSPSetDirect(ksp));
-  PetscCall(KSPSetOperators(ksp, J, J));
   PetscCall(KSPSolve(ksp, F, W));
   PetscCall(KSPGetConvergedReason(ksp, &reason));
-  PetscCheck(reason > 0, PetscObjectComm((PetscObject)X), PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed (KSP reason %s)", KSPConvergedReasons[reason]);
+  PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed (KSP reason %s)", KSPConvergedReasons[reason]);
   /* X_p = w_p, Xdot = (w_u, 0) */
   if (isp) {
     PetscCall(VecGetSubVector(X, isp, &sub));
@@ -208,6 +237,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       r.lin_its        = nli - nli_prev;
       r.err_test_fails = (PetscInt)(netf - netf_prev);
       r.conv_fails     = (PetscInt)(ncfn - ncfn_prev);
+      r.X              = X;
       nni_prev         = nni;
       netf_prev        = netf;
       ncfn_prev        = ncfn;

@@ -24,10 +24,11 @@ typedef struct {
   PetscReal h_min, h_max;
 } SlumpStats;
 
-/* One accepted step. */
+/* One accepted step; X is the state at t (read only, valid in the monitor). */
 typedef struct {
   PetscReal t, h;
   PetscInt  order, newton_its, lin_its, err_test_fails, conv_fails;
+  Vec       X;
 } SlumpStepRecord;
 
 typedef PetscErrorCode (*SlumpStepMonitorFn)(SlumpIntegrator, const SlumpStepRecord *, void *);

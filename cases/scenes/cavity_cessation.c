@@ -45,11 +45,8 @@ static PetscErrorCode InitialState(SlumpScene scene, SlumpProblem prob, Vec X)
 {
   CavityCtx       *c = (CavityCtx *)scene->ctx;
   SlumpDiagnostics d;
-  PetscBool        set;
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(PetscObjectComm((PetscObject)X), "initial state: steady lid-driven flow of %s (KINSOL)\n", c->newtonian ? "a Newtonian fluid" : "the material"));
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2")); /* scene default */
   PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, c->newtonian, X));
   PetscCall(SlumpProblemComputeDiagnostics(prob, 0.0, X, &d));
   PetscCall(SlumpSceneAddResult(scene, "u0_norm", PetscSqrtReal(2.0 * d.kinetic_energy)));

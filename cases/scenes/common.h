@@ -75,7 +75,20 @@ static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, Slum
   PetscCall(VecGetSize(X0, &n0));
   PetscCall(VecGetSize(X, &n));
   PetscCheck(n0 == n, comm, PETSC_ERR_PLIB, "Steady and transient problems have different layouts");
-  PetscCall(SlumpSteadySolve(p0, X0, &st));
+  {
+    /* scene default: continuation from m = 1e2 for models stiffer when their
+       parameter grows (Papanastasiou m, ...), unless the user chose a start */
+    const char *regname;
+    PetscReal   target;
+    PetscBool   larger, set;
+    PetscCall(SlumpRheologyGetRegularisation(r0, &regname, &target, &larger));
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
+    if (regname && larger && target > 1e2 && !set) {
+      PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2"));
+      PetscCall(SlumpSteadySolve(p0, X0, &st));
+      PetscCall(PetscOptionsClearValue(NULL, "-steady_continuation_start"));
+    } else PetscCall(SlumpSteadySolve(p0, X0, &st));
+  }
   PetscCall(VecCopy(X0, X));
   PetscCall(VecDestroy(&X0));
   PetscCall(SlumpProblemDestroy(&p0));

@@ -34,11 +34,8 @@ static PetscErrorCode InitialAndNorm(SlumpScene scene, SlumpProblem prob, Vec X)
   DuctCessationCtx *c = (DuctCessationCtx *)scene->ctx;
   SlumpDiagnostics  d;
   PetscReal         tau0, etap, area = c->L * c->L;
-  PetscBool         set;
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(PetscObjectComm((PetscObject)X), "initial state: steady duct flow of %s driven by G = %g (KINSOL)\n", c->newtonian ? "a Newtonian fluid" : "the material", (double)c->G));
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2")); /* scene default */
   PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, c->newtonian, X));
   PetscCall(SlumpProblemComputeDiagnostics(prob, 0.0, X, &d));
   PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));

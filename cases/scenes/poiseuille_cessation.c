@@ -33,11 +33,8 @@ static PetscErrorCode ConfigureDriven(SlumpScene scene, SlumpProblem p0)
 static PetscErrorCode SteadyInitial(SlumpScene scene, SlumpProblem prob, Vec X)
 {
   CessationCtx *c = (CessationCtx *)scene->ctx;
-  PetscBool     set;
   PetscFunctionBeginUser;
   PetscCall(PetscPrintf(PetscObjectComm((PetscObject)X), "initial state: steady driven flow of %s (KINSOL)\n", c->newtonian ? "a Newtonian fluid" : "the material"));
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
-  if (!set) PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2")); /* scene default */
   PetscCall(SlumpSceneSteadyInitialState(scene, prob, c->lower, c->upper, ConfigureDriven, c->newtonian, X));
   PetscFunctionReturn(0);
 }
