@@ -53,11 +53,12 @@ static PetscErrorCode StepMonitor(SlumpIntegrator ti, const SlumpStepRecord *s, 
   PetscFunctionBeginUser;
   r->newton_since += s->newton_its;
   r->lin_since += s->lin_its;
-  if (r->steps) {
+  {
     SlumpDiagnosticKind ke = SLUMP_DIAG_KINETIC_ENERGY;
     PetscReal           e;
+    /* collective: every rank computes, rank 0 writes */
     PetscCall(SlumpProblemComputeDiagnosticList(r->prob, s->t, s->X, 1, &ke, &e));
-    fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d,%.12e\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails, (double)e);
+    if (r->steps) fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d,%.12e\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails, (double)e);
   }
   PetscFunctionReturn(0);
 }

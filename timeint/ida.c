@@ -253,6 +253,8 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       ti->stats.h_min          = PetscMin(ti->stats.h_min, h);
       ti->stats.h_max          = PetscMax(ti->stats.h_max, h);
       if (ti->stepmon) PetscCall(ti->stepmon(ti, &r, ti->stepctx));
+      /* IDASetMaxNumSteps counts per IDASolve call, i.e. one step here */
+      PetscCheck(ti->stats.steps < ti->max_steps || tret >= ti->tfinal * (1 - 1e-14), comm, PETSC_ERR_NOT_CONVERGED, "IDA took -time_max_steps = %" PetscInt_FMT " steps and stopped at t = %g (h = %g) before t_end = %g; try -ida_nonlinear_solver linesearch, looser -time_rtol/-time_atol or a softer regularisation", ti->max_steps, (double)tret, (double)h, (double)ti->tfinal);
     }
     while (next_out <= tret * (1 + 1e-12) + 1e-300 && next_out <= ti->tfinal * (1 + 1e-12)) {
       PetscReal tout = PetscMin(next_out, ti->tfinal);
