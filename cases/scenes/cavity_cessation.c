@@ -67,7 +67,6 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
 PetscErrorCode SlumpSceneCreate_CavityCessation(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   CavityCtx    *c;
-  SlumpRheology rheo;
   PetscReal     bn   = 1.0;
   PetscBool     conv = PETSC_FALSE;
   const char   *lids[] = {"uniform", "regularised"};
@@ -85,21 +84,12 @@ PetscErrorCode SlumpSceneCreate_CavityCessation(SlumpScene scene, SlumpProblem p
   PetscCall(SlumpSceneInitialFlowOption(comm, &c->newtonian));
   PetscCheck(bn > 0, comm, PETSC_ERR_USER_INPUT, "-bn must be positive; got %g", (double)bn);
   c->regularised          = lid == 1 ? PETSC_TRUE : PETSC_FALSE;
-  scene->steady           = PETSC_FALSE;
-  scene->tfinal           = 0.3;
-  scene->dtout            = 0.005;
-  scene->arrest_threshold = 1e-3;
-  scene->mesh_n[0]        = 16;
-  scene->mesh_n[1]        = 16;
+  SlumpSceneSetCessationDefaults(scene, 0.3, 0.005, 16, 16);
   c->lower[0] = c->lower[1] = 0.0;
   c->upper[0] = c->upper[1] = c->L;
   PetscCall(SlumpSceneSetMesh(scene, prob, comm, c->lower, c->upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA | (conv ? SLUMP_EFFECT_CONVECTION : 0)));
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
-  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
-  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->U / c->L));
-  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->U / c->L));
   /* all walls at rest for t >= 0 */
   PetscCall(SlumpProblemAddVelocityBC(prob, "walls", "boundary", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   scene->initial    = InitialState;

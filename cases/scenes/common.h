@@ -126,3 +126,29 @@ static inline PetscErrorCode SlumpSceneGetResult(SlumpScene scene, const char na
   }
   PetscFunctionReturn(0);
 }
+
+/* The scenes' default material: Papanastasiou-regularised Bingham fluid,
+   eta_p = 1, yield stress tau0, m = 1e4 (-rheology_* options override). */
+static inline PetscErrorCode SlumpSceneSetBinghamDefaults(SlumpProblem prob, PetscReal tau0)
+{
+  SlumpRheology rheo;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
+  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
+  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", tau0));
+  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscFunctionReturn(0);
+}
+
+/* Defaults of a cessation scene: time integration to tfinal with outputs
+   every dtout, mean-shear-rate arrest below 1e-3, nx x ny cells. */
+static inline void SlumpSceneSetCessationDefaults(SlumpScene scene, PetscReal tfinal, PetscReal dtout, PetscInt nx, PetscInt ny)
+{
+  scene->steady           = PETSC_FALSE;
+  scene->tfinal           = tfinal;
+  scene->dtout            = dtout;
+  scene->arrest_threshold = 1e-3;
+  scene->mesh_n[0]        = nx;
+  scene->mesh_n[1]        = ny;
+}

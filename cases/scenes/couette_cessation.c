@@ -70,7 +70,6 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
 PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   CouetteCtx    *c;
-  SlumpRheology  rheo;
   PetscReal      bn = 1.0, lower[2] = {0.0, 0.0}, upper[2];
   const char    *kinds[] = {"analytic", "steady"};
   PetscInt       kind    = 0;
@@ -84,12 +83,7 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   PetscCall(PetscOptionsEList("-couette_initial", "Initial state: analytic (u = V y/H) or steady (KINSOL, plate moving)", "", kinds, 2, kinds[kind], &kind, NULL));
   PetscOptionsEnd();
   PetscCheck(bn >= 0, comm, PETSC_ERR_USER_INPUT, "-bn must be non-negative; got %g", (double)bn);
-  scene->steady           = PETSC_FALSE;
-  scene->tfinal           = 0.3;
-  scene->dtout            = 0.01;
-  scene->arrest_threshold = 1e-3;
-  scene->mesh_n[0]        = 2;
-  scene->mesh_n[1]        = 32;
+  SlumpSceneSetCessationDefaults(scene, 0.3, 0.01, 2, 32);
   upper[0]                = 0.25 * c->H;
   upper[1]                = c->H;
   PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
@@ -102,11 +96,7 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   scene->bound_beta       = 2.0 / PetscSqrtReal(c->H);
   scene->bound_norm_scale = 1.0 / PetscSqrtReal(upper[0] - lower[0]);
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA));
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
-  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
-  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * 1.0 * c->V / c->H));
-  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * 1.0 * c->V / c->H));
   /* both plates at rest for t >= 0 */
   PetscCall(SlumpProblemAddVelocityBC(prob, "plate_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "plate_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));

@@ -41,7 +41,6 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
 PetscErrorCode SlumpSceneCreate_Duct(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   DuctCtx      *c;
-  SlumpRheology rheo;
   PetscReal     bn = 0.1, lower[2] = {0.0, 0.0}, upper[2];
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
@@ -61,11 +60,7 @@ PetscErrorCode SlumpSceneCreate_Duct(SlumpScene scene, SlumpProblem prob, MPI_Co
   PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_BODY_FORCE));
   PetscCall(SlumpProblemSetBodyForce(prob, c->G, 0.0));
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
-  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
-  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->G * c->L));
-  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->G * c->L));
   PetscCall(SlumpProblemAddVelocityBC(prob, "walls", "boundary", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   scene->results          = Results;
   scene->bound_beta       = 2.0 * PetscSqrtReal(PETSC_PI); /* scalar 2-D: sharp L1-L2 isoperimetric constant */

@@ -65,7 +65,6 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
 PetscErrorCode SlumpSceneCreate_DuctCessation(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   DuctCessationCtx *c;
-  SlumpRheology     rheo;
   PetscReal         bn = 0.1;
   const PetscReal   bnc = 1.0 / (2.0 + PetscSqrtReal(PETSC_PI));
   PetscFunctionBeginUser;
@@ -79,22 +78,13 @@ PetscErrorCode SlumpSceneCreate_DuctCessation(SlumpScene scene, SlumpProblem pro
   PetscCall(SlumpSceneInitialFlowOption(comm, &c->newtonian));
   if (c->newtonian) PetscCheck(bn > 0, comm, PETSC_ERR_USER_INPUT, "-bn must be positive; got %g", (double)bn);
   else PetscCheck(bn > 0 && bn < bnc, comm, PETSC_ERR_USER_INPUT, "-bn must lie in (0, %.6f) (at Bn >= 1/(2 + sqrt(pi)) the initial flow is at rest; -initial_flow newtonian allows any Bn > 0); got %g", (double)bnc, (double)bn);
-  scene->steady           = PETSC_FALSE;
-  scene->tfinal           = 0.3;
-  scene->dtout            = 0.005;
-  scene->arrest_threshold = 1e-3;
-  scene->mesh_n[0]        = 16;
-  scene->mesh_n[1]        = 16;
+  SlumpSceneSetCessationDefaults(scene, 0.3, 0.005, 16, 16);
   c->lower[0] = c->lower[1] = 0.0;
   c->upper[0] = c->upper[1] = c->L;
   PetscCall(SlumpProblemSetFormulation(prob, SLUMP_FORMULATION_ANTIPLANE));
   PetscCall(SlumpSceneSetMesh(scene, prob, comm, c->lower, c->upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA)); /* gradient removed */
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
-  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
-  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->G * c->L));
-  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->G * c->L));
   PetscCall(SlumpProblemAddVelocityBC(prob, "walls", "boundary", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   scene->initial          = InitialAndNorm;
   scene->results          = Results;

@@ -97,10 +97,7 @@ PetscErrorCode SlumpSceneCreate_Poiseuille(SlumpScene scene, SlumpProblem prob, 
   PetscCall(SlumpProblemSetBodyForce(prob, c->G, 0.0));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   c->rheo = rheo;
-  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
-  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
-  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->G * c->H));
-  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->G * c->H));
   if (half) PetscCall(SlumpProblemAddFreeSlipBC(prob, "bottom"));
   else PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));

@@ -76,7 +76,6 @@ static PetscErrorCode InitialAndNorm(SlumpScene scene, SlumpProblem prob, Vec X)
 PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   CessationCtx *c;
-  SlumpRheology rheo;
   PetscReal     bn = 0.5;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
@@ -89,23 +88,14 @@ PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProbl
   PetscCall(SlumpSceneInitialFlowOption(comm, &c->newtonian));
   if (c->newtonian) PetscCheck(bn > 0, comm, PETSC_ERR_USER_INPUT, "-bn must be positive; got %g", (double)bn);
   else PetscCheck(bn > 0 && bn < 1, comm, PETSC_ERR_USER_INPUT, "-bn must lie in (0, 1) (at Bn >= 1 the initial flow is at rest; -initial_flow newtonian allows any Bn > 0); got %g", (double)bn);
-  scene->steady           = PETSC_FALSE;
-  scene->tfinal           = 0.5;
-  scene->dtout            = 0.01;
-  scene->arrest_threshold = 1e-3;
-  scene->mesh_n[0]        = 2;
-  scene->mesh_n[1]        = 32;
+  SlumpSceneSetCessationDefaults(scene, 0.5, 0.01, 2, 32);
   c->lower[0]             = 0.0;
   c->lower[1]             = -c->H;
   c->upper[0]             = 0.25;
   c->upper[1]             = c->H;
   PetscCall(SlumpSceneSetMesh(scene, prob, comm, c->lower, c->upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA)); /* driving removed */
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologySetType(rheo, SLUMP_RHEOLOGY_PAPANASTASIOU));
-  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 1.0));
-  PetscCall(SlumpRheologySetParameter(rheo, "yield_stress", bn * c->G * c->H));
-  PetscCall(SlumpRheologySetParameter(rheo, "m", 1e4));
+  PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->G * c->H));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpSceneChannelEnds(prob));
