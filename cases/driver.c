@@ -6,9 +6,27 @@
 #include "slumpscene.h"
 #include <time.h>
 
+/* The first message of the last error, for the sweep's rows. */
+static char last_error[512];
+
+const char *SlumpLastErrorMessage(void)
+{
+  return last_error;
+}
+
+void SlumpClearLastError(void)
+{
+  last_error[0] = 0;
+}
+
 PetscErrorCode SlumpErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   PetscMPIInt rank = 0;
+  if (p == PETSC_ERROR_INITIAL && !last_error[0]) {
+    snprintf(last_error, sizeof(last_error), "%s", mess && mess[0] ? mess : "PETSc error (no message)");
+    for (char *c = last_error; *c; ++c)
+      if (*c == '\n' || *c == '\r') *c = ' ';
+  }
   if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE) {
     if (p == PETSC_ERROR_INITIAL) {
       MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
@@ -88,18 +106,49 @@ static PetscErrorCode OutputMonitor(SlumpIntegrator ti, PetscReal t, Vec X, void
   PetscFunctionReturn(0);
 }
 
+/* Peak resident memory of this run, summed over its ranks. On Linux the
+ * high-water mark (VmHWM) is reset at the start of each run by writing 5 to
+ * /proc/self/clear_refs, so runs of a sweep in one process are measured
+ * separately; elsewhere PETSc's process maximum is used. */
+static PetscBool hwm_reset = PETSC_FALSE;
+
+static void ResetPeakMemory(void)
+{
+  FILE *fp = fopen("/proc/self/clear_refs", "w");
+  hwm_reset = PETSC_FALSE;
+  if (fp) {
+    hwm_reset = fputs("5", fp) >= 0 ? PETSC_TRUE : PETSC_FALSE;
+    if (fclose(fp)) hwm_reset = PETSC_FALSE;
+  }
+}
+
+static PetscReal ReadVmHWM(void)
+{
+  char  line[256];
+  long  kb = -1;
+  FILE *fp = fopen("/proc/self/status", "r");
+  if (!fp) return -1.0;
+  while (fgets(line, sizeof(line), fp))
+    if (!strncmp(line, "VmHWM:", 6)) kb = strtol(line + 6, NULL, 10);
+  fclose(fp);
+  return kb < 0 ? -1.0 : (PetscReal)kb / 1024.0;
+}
+
 static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *mb)
 {
   PetscLogDouble mem;
   PetscFunctionBeginUser;
-  PetscCall(PetscMemoryGetMaximumUsage(&mem));
-  if (mem <= 0) PetscCall(PetscMemoryGetCurrentUsage(&mem));
-  *mb = (PetscReal)mem / 1048576.0;
+  *mb = hwm_reset ? ReadVmHWM() : -1.0;
+  if (*mb < 0) {
+    PetscCall(PetscMemoryGetMaximumUsage(&mem));
+    if (mem <= 0) PetscCall(PetscMemoryGetCurrentUsage(&mem));
+    *mb = (PetscReal)mem / 1048576.0;
+  }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, mb, 1, MPIU_REAL, MPIU_SUM, comm));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SlumpRun(MPI_Comm comm)
+PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
 {
   char            scenename[64] = "couette_cessation", dir[PETSC_MAX_PATH_LEN] = "";
   PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE, eigen = PETSC_FALSE;
@@ -122,6 +171,7 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
 
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t_start));
+  ResetPeakMemory();
   PetscCall(PetscMemorySetGetMaximumUsage());
   PetscCall(PetscMemzero(&r, sizeof(r)));
   PetscCallMPI(MPI_Comm_rank(comm, &r.rank));
@@ -172,8 +222,10 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
       }
     }
   }
-  PetscCall(PetscPrintf(comm, "slump %s: scene %s on %d rank%s\n", SLUMP_VERSION_STRING, scenename, (int)size, size > 1 ? "s" : ""));
-  PetscCall(SlumpProblemView(prob, PETSC_VIEWER_STDOUT_(comm)));
+  if (banner) {
+    PetscCall(PetscPrintf(comm, "slump %s: scene %s on %d rank%s\n", SLUMP_VERSION_STRING, scenename, (int)size, size > 1 ? "s" : ""));
+    PetscCall(SlumpProblemView(prob, PETSC_VIEWER_STDOUT_(comm)));
+  }
 
   {
     PetscBool help;
@@ -272,6 +324,43 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
     if (r.series) fclose(r.series);
     if (r.steps) fclose(r.steps);
   }
+  if (res) {
+    SlumpRheologyType rtype;
+    const char       *regname;
+    PetscCall(PetscMemzero(res, sizeof(*res)));
+    PetscCall(PetscStrncpy(res->scene, scenename, sizeof(res->scene)));
+    PetscCall(SlumpRheologyGetType(rheo, &rtype));
+    PetscCall(PetscStrncpy(res->rheology, rtype, sizeof(res->rheology)));
+    PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &res->regularisation_value, NULL));
+    PetscCall(PetscStrncpy(res->regularisation, regname ? regname : "none", sizeof(res->regularisation)));
+    PetscCall(PetscStrncpy(res->integrator, scene->steady ? "steady" : SlumpIntegratorTypes[itype], sizeof(res->integrator)));
+    res->rtol     = rtol;
+    res->atol     = atol;
+    res->dt       = dt;
+    res->ranks    = size;
+    res->cells    = ncells;
+    res->unknowns = N;
+    res->t_final  = t_final;
+    res->t_arrest = t_arrest;
+    res->narrest  = narrest;
+    for (PetscInt k = 0; k < narrest; ++k) {
+      res->arrest_diag[k]      = arrest[k].diag;
+      res->arrest_kind[k]      = arrest[k].kind;
+      res->arrest_time[k]      = arrest[k].t_arrest;
+      res->arrest_threshold[k] = arrest[k].threshold;
+    }
+    res->stats     = stats;
+    res->wall_time = t_end - t_start;
+    res->peak_mb   = peak;
+    res->err_u     = err[0];
+    res->norm_u    = nrm[0];
+    res->nresult   = scene->nresult;
+    for (PetscInt i = 0; i < scene->nresult; ++i) {
+      PetscCall(PetscStrncpy(res->rname[i], scene->rname[i], sizeof(res->rname[i])));
+      res->rvalue[i] = scene->rvalue[i];
+    }
+  }
+  if (!banner) goto cleanup;
   PetscCall(PetscPrintf(comm, "summary: scene %s, t %.6g", scenename, (double)t_final));
   if (!scene->steady) {
     for (PetscInt k = 0; k < narrest; ++k) {
@@ -285,10 +374,22 @@ PetscErrorCode SlumpRun(MPI_Comm comm)
   for (PetscInt i = 0; i < scene->nresult; ++i) PetscCall(PetscPrintf(comm, ", %s %.6g", scene->rname[i], (double)scene->rvalue[i]));
   PetscCall(PetscPrintf(comm, "\noutputs in %s/\n", dir));
 
+cleanup:
   PetscCall(VecDestroy(&X));
   PetscCall(SlumpFieldWriterDestroy(&r.writer));
   PetscCall(SlumpIntegratorDestroy(&ti));
   PetscCall(SlumpSceneDestroy(&scene));
   PetscCall(SlumpProblemDestroy(&prob));
+  PetscFunctionReturn(0);
+}
+
+/* slump: a sweep when -sweep is given, otherwise one run. */
+PetscErrorCode SlumpRun(MPI_Comm comm)
+{
+  PetscBool sweep;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-sweep", &sweep));
+  if (sweep) PetscCall(SlumpSweep(comm));
+  else PetscCall(SlumpRunOne(comm, PETSC_TRUE, NULL));
   PetscFunctionReturn(0);
 }

@@ -46,7 +46,34 @@ PETSC_EXTERN PetscErrorCode SlumpSceneAddResult(SlumpScene scene, const char nam
 /* Mesh from -mesh_file, or a rectangle with -mesh_nx x -mesh_ny cells. */
 PETSC_EXTERN PetscErrorCode SlumpSceneCreateMesh(SlumpScene scene, MPI_Comm comm, const PetscReal lower[2], const PetscReal upper[2], DM *dm);
 
-/* The slump program: parse options, run one scene, write the outputs. */
+/* What one run measured (filled by SlumpRunOne, one row of a sweep). */
+typedef struct {
+  char       scene[64], rheology[64], regularisation[64], integrator[16];
+  PetscReal  regularisation_value, rtol, atol, dt;
+  PetscInt   ranks, cells, unknowns;
+  PetscReal  t_final, t_arrest; /* t_arrest: the earliest criterion, -1 if none fired */
+  PetscInt   narrest;
+  PetscInt   arrest_diag[16], arrest_kind[16];
+  PetscReal  arrest_time[16], arrest_threshold[16];
+  SlumpStats stats;
+  PetscReal  wall_time, peak_mb; /* peak resident memory summed over the run's ranks */
+  PetscReal  err_u, norm_u;      /* L2 velocity error and norm (err_u < 0: no reference field) */
+  PetscInt   nresult;
+  char       rname[SLUMP_SCENE_MAX_ITEMS][32];
+  PetscReal  rvalue[SLUMP_SCENE_MAX_ITEMS];
+} SlumpRunResult;
+
+/* The slump program: a sweep (-sweep) or one run. */
 PETSC_EXTERN PetscErrorCode SlumpRun(MPI_Comm comm);
+/* One run on comm: parse options, run the scene, write its outputs; banner:
+   print the set-up and the summary line; res (may be NULL) gets the numbers. */
+PETSC_EXTERN PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res);
+/* -sweep NAME:v1,v2,... [-sweep2 NAME2:w1,w2,...]: one run per value (or
+   pair), -sweep_ranks k ranks each on its own sub-communicator, one row per
+   run in <output_dir>/sweep.csv as runs finish. */
+PETSC_EXTERN PetscErrorCode SlumpSweep(MPI_Comm comm);
+/* The first message of the last error (empty if none), and its reset. */
+PETSC_EXTERN const char    *SlumpLastErrorMessage(void);
+PETSC_EXTERN void           SlumpClearLastError(void);
 /* Error handler printing one sentence for user errors (input, files, convergence). */
 PETSC_EXTERN PetscErrorCode SlumpErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx);
