@@ -89,3 +89,31 @@ PETSC_EXTERN PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStat
    velocity in X, solve [rho M, B^T; B, 0] (u', p) = (-(A(u) - f), 0) and
    return X with the pressure set, Xdot = (u', 0). */
 PETSC_EXTERN PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot);
+
+/* The exact (unregularised) Bingham cessation between two walls, in 1-D
+ * (timeint/alg2.c): P1 in y, backward Euler, ALG2 augmented Lagrangian per
+ * step. The reference of the Couette and Poiseuille cessation scenes. */
+typedef struct {
+  PetscReal L;                /* wall distance (walls at y = 0 and y = L, no slip) */
+  PetscReal rho, eta, tau0;   /* density, plastic viscosity, yield stress (all > 0) */
+  PetscInt  ncells;           /* P1 elements across */
+  PetscReal dt, t_max;        /* backward Euler step, end time */
+  PetscReal r;                /* augmentation (<= 0: max(eta, 0.3 L sqrt(rho eta / dt))) */
+  PetscReal tol;              /* ALG2 tolerance on |du| and |g - gamma| L relative to max|u^n| (<= 0: 1e-9) */
+  PetscInt  max_iter;         /* ALG2 iterations per step (<= 0: 100000) */
+  PetscReal threshold;        /* t_arrest: mean shear rate below this (<= 0: not computed) */
+  PetscReal (*u0)(PetscReal y, void *ctx);
+  void     *ctx;
+} SlumpBinghamStripSpec;
+
+typedef struct {
+  PetscReal t_stop;           /* stopping time (-1: still moving at t_max) */
+  PetscReal t_arrest;         /* mean shear rate < threshold (-1: not reached) */
+  PetscReal energy0, shear0, r;
+  PetscInt  steps, iterations, max_iterations, unconverged_steps;
+  PetscBool energy_monotone;  /* the kinetic energy never increased */
+} SlumpBinghamStripResult;
+
+PETSC_EXTERN PetscErrorCode SlumpBinghamStripCessation(const SlumpBinghamStripSpec *spec, SlumpBinghamStripResult *res);
+/* t_stop and t_arrest extrapolated from the steps dt and dt/2 (-1: not reached). */
+PETSC_EXTERN PetscErrorCode SlumpBinghamStripReference(const SlumpBinghamStripSpec *spec, PetscReal *t_stop, PetscReal *t_arrest);
