@@ -292,6 +292,13 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   if (scene->results) PetscCall(scene->results(scene, prob, t_final, X));
   PetscCall(PetscTime(&t_end));
   PetscCall(PeakMemory(comm, &peak));
+  if (!scene->steady && scene->exact_arrest) {
+    /* the exact model's times, for the first criterion (not in the cost) */
+    PetscReal ts = -1.0, ta = -1.0;
+    PetscCall(scene->exact_arrest(scene, prob, narrest ? (SlumpDiagnosticKind)arrest[0].diag : SLUMP_DIAG_MEAN_SHEAR_RATE, narrest ? arrest[0].threshold : 0.0, &ts, &ta));
+    if (ts >= 0) PetscCall(SlumpSceneAddResult(scene, "t_stop_exact", ts));
+    if (ta >= 0) PetscCall(SlumpSceneAddResult(scene, "t_arrest_exact", ta));
+  }
   PetscCall(VecGetSize(X, &N));
   PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
   ncells = cEnd - cStart;

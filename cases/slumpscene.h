@@ -31,6 +31,9 @@ struct _n_SlumpScene {
   PetscInt  nresult;
   char      rname[SLUMP_SCENE_MAX_ITEMS][32];
   PetscReal rvalue[SLUMP_SCENE_MAX_ITEMS];
+  /* optional: the exact (unregularised) model's stopping time, and the time
+     its diagnostic `diag` falls below `threshold` (-1: not available) */
+  PetscErrorCode (*exact_arrest)(SlumpScene, SlumpProblem, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest);
   void     *ctx;
 };
 

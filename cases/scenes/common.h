@@ -152,3 +152,66 @@ static inline void SlumpSceneSetCessationDefaults(SlumpScene scene, PetscReal tf
   scene->mesh_n[0]        = nx;
   scene->mesh_n[1]        = ny;
 }
+
+/* The exact (unregularised) cessation of a 1-D strip of width L as the
+ * scene's reference (timeint/alg2.c, ALG2, extrapolated in dt), for the
+ * Bingham models (papanastasiou, bercovier, bingham_simple) with a yield
+ * stress. u0(y, ctx) is the initial profile for 0 < y < L, t_scale the time
+ * scale (the energy bound) that sets dt = t_scale / -exact_steps. The arrest
+ * time is computed for the mean shear rate only. Options: -exact_reference
+ * (default true), -exact_cells (400), -exact_steps (1000). The last result
+ * is kept, so the runs of a sweep over a regularisation parameter compute
+ * it once per process. */
+static inline PetscErrorCode SlumpSceneStripExact(SlumpProblem prob, PetscReal L, PetscReal (*u0)(PetscReal, void *), void *ctx, PetscReal key, PetscReal t_scale, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest)
+{
+  static PetscReal      cache[9] = {-1, -1, -1, -1, -1, -1, -1, -1, -1}, cached[2];
+  SlumpRheology         rheo;
+  SlumpRheologyType     type;
+  SlumpBinghamStripSpec s;
+  PetscReal             tau0, eta, rho = 1.0;
+  PetscBool             on = PETSC_TRUE, bingham = PETSC_FALSE, same;
+  PetscInt              cells = 400, steps = 1000;
+  MPI_Comm              comm;
+  PetscFunctionBeginUser;
+  *t_stop = *t_arrest = -1.0;
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologyGetType(rheo, &type));
+  for (int k = 0; k < 3; ++k) {
+    const char *names[] = {SLUMP_RHEOLOGY_PAPANASTASIOU, SLUMP_RHEOLOGY_BERCOVIER, SLUMP_RHEOLOGY_BINGHAM_SIMPLE};
+    PetscCall(PetscStrcmp(type, names[k], &same));
+    if (same) bingham = PETSC_TRUE;
+  }
+  PetscCall(SlumpSceneYieldParameters(prob, &tau0, &eta));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-density", &rho, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-exact_reference", &on, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-exact_cells", &cells, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-exact_steps", &steps, NULL));
+  if (!on || !bingham || tau0 <= 0 || t_scale <= 0) PetscFunctionReturn(0);
+  {
+    DM dm;
+    PetscCall(SlumpProblemGetDM(prob, &dm));
+    PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
+  }
+  PetscCheck(cells >= 2 && steps >= 10, comm, PETSC_ERR_USER_INPUT, "-exact_cells must be >= 2 and -exact_steps >= 10; got %d and %d", (int)cells, (int)steps);
+  if (diag != SLUMP_DIAG_MEAN_SHEAR_RATE) threshold = 0.0;
+  {
+    const PetscReal now[9] = {L, rho, eta, tau0, key, t_scale, threshold, (PetscReal)cells, (PetscReal)steps};
+    same = PETSC_TRUE;
+    for (int k = 0; k < 9; ++k)
+      if (now[k] != cache[k]) same = PETSC_FALSE;
+    if (!same) {
+      PetscCall(PetscMemzero(&s, sizeof(s)));
+      s.L = L; s.rho = rho; s.eta = eta; s.tau0 = tau0; s.ncells = cells;
+      s.dt = t_scale / steps; s.t_max = 4.0 * t_scale; s.threshold = threshold;
+      s.u0 = u0; s.ctx = ctx;
+      PetscCall(SlumpBinghamStripReference(&s, &cached[0], &cached[1]));
+      for (int k = 0; k < 9; ++k) cache[k] = now[k];
+      PetscCall(PetscPrintf(comm, "exact reference (ALG2, %d cells, dt %.3g and %.3g, extrapolated): t_stop = %.8g", (int)cells, (double)s.dt, (double)(0.5 * s.dt), (double)cached[0]));
+      if (threshold > 0) PetscCall(PetscPrintf(comm, ", mean shear rate < %.4g at t = %.8g", (double)threshold, (double)cached[1]));
+      PetscCall(PetscPrintf(comm, "\n"));
+    }
+  }
+  *t_stop   = cached[0];
+  *t_arrest = cached[1];
+  PetscFunctionReturn(0);
+}

@@ -67,6 +67,24 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
   PetscFunctionReturn(0);
 }
 
+/* the exact model's profile at t = 0 */
+static PetscReal ExactU0(PetscReal y, void *ctx)
+{
+  const CouetteCtx *c = (const CouetteCtx *)ctx;
+  return c->V * y / c->H;
+}
+
+static PetscErrorCode ExactArrest(SlumpScene scene, SlumpProblem prob, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest)
+{
+  CouetteCtx *c = (CouetteCtx *)scene->ctx;
+  PetscReal   bound = 0.0;
+  PetscBool   found;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpSceneGetResult(scene, "t_stop_bound", &bound, &found));
+  PetscCall(SlumpSceneStripExact(prob, c->H, ExactU0, c, 0.0, found ? bound : 0.0, diag, threshold, t_stop, t_arrest));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   CouetteCtx    *c;
@@ -102,7 +120,8 @@ PetscErrorCode SlumpSceneCreate_CouetteCessation(SlumpScene scene, SlumpProblem 
   PetscCall(SlumpProblemAddVelocityBC(prob, "plate_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpSceneChannelEnds(prob));
   PetscCall(SlumpProblemSetInitialVelocity(prob, InitialU, c));
-  scene->results = Results;
+  scene->results      = Results;
+  scene->exact_arrest = ExactArrest;
   PetscCall(SlumpSceneAddParameter(scene, "bn_option", bn));
   PetscFunctionReturn(0);
 }

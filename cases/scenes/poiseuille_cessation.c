@@ -15,6 +15,7 @@
 typedef struct {
   PetscReal H, G, lower[2], upper[2];
   PetscBool newtonian; /* initial flow of a Newtonian fluid */
+  PetscReal tau0, eta; /* for the exact profile */
 } CessationCtx;
 
 /* The steady flow driven by G (no inertia). */
@@ -73,6 +74,28 @@ static PetscErrorCode InitialAndNorm(SlumpScene scene, SlumpProblem prob, Vec X)
   PetscFunctionReturn(0);
 }
 
+/* the exact model's initial profile (steady Bingham or Newtonian flow under
+   G, REFERENCES.md) on 0 < y' < 2H, y = y' - H */
+static PetscReal ExactU0(PetscReal yy, void *ctx)
+{
+  const CessationCtx *c = (const CessationCtx *)ctx;
+  const PetscReal     y = PetscAbsReal(yy - c->H), y0 = c->newtonian ? 0.0 : c->tau0 / c->G;
+  if (y <= y0) return c->G * (c->H - y0) * (c->H - y0) / (2.0 * c->eta);
+  return c->G * (c->H * c->H - y * y) / (2.0 * c->eta) - (c->newtonian ? 0.0 : c->tau0 * (c->H - y) / c->eta);
+}
+
+static PetscErrorCode ExactArrest(SlumpScene scene, SlumpProblem prob, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest)
+{
+  CessationCtx *c = (CessationCtx *)scene->ctx;
+  PetscReal     bound = 0.0;
+  PetscBool     found;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpSceneYieldParameters(prob, &c->tau0, &c->eta));
+  PetscCall(SlumpSceneGetResult(scene, "t_stop_bound", &bound, &found));
+  PetscCall(SlumpSceneStripExact(prob, 2.0 * c->H, ExactU0, c, c->newtonian ? 1.0 : 0.0, found ? bound : 0.0, diag, threshold, t_stop, t_arrest));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   CessationCtx *c;
@@ -102,6 +125,7 @@ PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProbl
   PetscCall(SlumpProblemSetFlowRateBoundary(prob, "right"));
   scene->initial          = InitialAndNorm;
   scene->results          = Results;
+  scene->exact_arrest     = ExactArrest;
   scene->bound_beta       = 2.0 / PetscSqrtReal(2.0 * c->H);
   scene->bound_norm_scale = 1.0 / PetscSqrtReal(c->upper[0] - c->lower[0]);
   PetscCall(SlumpSceneAddParameter(scene, "bn_option", bn));
