@@ -900,6 +900,89 @@ def test_input():
             fail("%s: output directory %s was created" % (name, out))
 
 
+def sweep_rows(outdir):
+    with open(os.path.join(outdir, "sweep.csv")) as f:
+        r = csv.reader(f)
+        header = next(r)
+        rows = list(r)
+    for row in rows:
+        if len(row) != len(header):
+            fail("sweep.csv row %s has %d fields, the header %d" % (row[:3], len(row), len(header)))
+    return [dict(zip(header, row)) for row in rows]
+
+
+def run_sweep(opts, outdir, ranks=1, scene="couette_cessation"):
+    cmd = []
+    if ranks > 1:
+        cmd = [ARGS.mpiexec, "--oversubscribe", "--allow-run-as-root", "-n", str(ranks)]
+    cmd += [ARGS.slump, "-scene", scene, "-output_dir", outdir] + opts
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        fail("sweep failed (%d): %s\n%s\n%s" % (p.returncode, " ".join(cmd), p.stdout[-3000:], p.stderr[-3000:]))
+    return p
+
+
+def test_sweep_parallel():
+    """A 3-value sweep on 2 ranks (2 groups of 1 rank) gives 3 rows whose
+    arrest times equal those of the single runs to 1e-10 relative, and each
+    row carries the exact model's arrest time with the error against it
+    (Couette Bn 1, 8 cells across: within 2e-2 at m = 1e2, 3e-3 at 1e3 and
+    1e4 of the exact mean-shear-rate arrest)."""
+    w = work("sweep_parallel")
+    base = ["-mesh_ny", "8", "-time_final", "0.15"]
+    ms = ["1e2", "1e3", "1e4"]
+    run_sweep(base + ["-sweep", "rheology_papanastasiou_m:" + ",".join(ms)], os.path.join(w, "sweep"), ranks=2)
+    rows = sweep_rows(os.path.join(w, "sweep"))
+    if len(rows) != 3:
+        fail("expected 3 rows, got %d" % len(rows))
+    tol = {"1e2": 2e-2, "1e3": 3e-3, "1e4": 3e-3}
+    for m in ms:
+        row = [r for r in rows if r["rheology_papanastasiou_m"] == m]
+        if len(row) != 1 or row[0]["status"] != "ok":
+            fail("no ok row for m = %s: %s" % (m, row))
+        row = row[0]
+        run("couette_cessation", base + ["-rheology_papanastasiou_m", m, "-output_fields", "0"], os.path.join(w, "single_" + m))
+        s = summary(os.path.join(w, "single_" + m))
+        t_sweep, t_single = float(row["t_arrest"]), s["t_arrest"]
+        rel = abs(t_sweep - t_single) / t_single
+        err, ta = float(row["arrest_error"]), float(row["t_arrest_exact"])
+        print("m %s: sweep %.12e, single run %.12e, rel diff %.1e; exact model %.8f, error %.2e; %s steps, %s residual evaluations, %s s, %s MB"
+              % (m, t_sweep, t_single, rel, ta, err, row["steps"], row["res_evals"], row["wall_time"], row["peak_memory_mb"]))
+        if not rel <= 1e-10:
+            fail("m %s: sweep and single run differ by %g relative (tolerance 1e-10)" % (m, rel))
+        if abs(err - abs(t_sweep - ta) / ta) > 1e-6 * err + 1e-12:
+            fail("m %s: arrest_error %g is not |t_arrest - t_arrest_exact| / t_arrest_exact" % (m, err))
+        if not err <= tol[m]:
+            fail("m %s: error against the exact model %g > %g" % (m, err, tol[m]))
+        for k in ("steps", "res_evals", "jac_evals", "newton_its", "lin_its", "wall_time", "peak_memory_mb"):
+            if not float(row[k]) > 0:
+                fail("m %s: column %s is %r, expected > 0" % (m, k, row[k]))
+
+
+def test_sweep_invalid():
+    """A 2 x 2 sweep (-sweep x -sweep2) with an invalid value: the two runs
+    with it become rows with status 'invalid' and the reason; the two others
+    are complete rows, and the sweep exits 0."""
+    w = work("sweep_invalid")
+    p = run_sweep(["-mesh_ny", "8", "-time_final", "0.15", "-sweep", "rheology_papanastasiou_m:1e3,-5", "-sweep2", "bn:1,4"], w)
+    rows = sweep_rows(w)
+    if len(rows) != 4:
+        fail("expected 4 rows, got %d" % len(rows))
+    for r in rows:
+        print("%s %s: %s %s t_arrest %s" % (r["rheology_papanastasiou_m"], r["bn"], r["status"], r["reason"], r["t_arrest"]))
+        if r["rheology_papanastasiou_m"] == "-5":
+            if r["status"] != "invalid" or "rheology_papanastasiou_m" not in r["reason"]:
+                fail("the invalid value gives status %r, reason %r; expected 'invalid' and a reason naming the option" % (r["status"], r["reason"]))
+        else:
+            if r["status"] != "ok":
+                fail("a valid run has status %r (%s)" % (r["status"], r["reason"]))
+            for k in ("t_arrest", "t_arrest_exact", "arrest_error", "steps", "res_evals", "wall_time", "peak_memory_mb"):
+                if not _isnum(r[k]):
+                    fail("complete row expected; column %s is %r" % (k, r[k]))
+    if "2 failed" not in p.stdout:
+        fail("the sweep's last line should count 2 failed runs:\n" + p.stdout[-500:])
+
+
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
 
 if __name__ == "__main__":
