@@ -119,11 +119,16 @@ PetscErrorCode SlumpSceneAddResult(SlumpScene scene, const char name[], PetscRea
 PetscErrorCode SlumpSceneCreateMesh(SlumpScene scene, MPI_Comm comm, const PetscReal lower[2], const PetscReal upper[2], DM *dm)
 {
   char      file[PETSC_MAX_PATH_LEN] = "";
-  PetscInt  nx = scene->mesh_n[0], ny = scene->mesh_n[1];
-  PetscBool has_file;
+  PetscInt  nx = scene->mesh_n[0], ny = scene->mesh_n[1], n = 0;
+  PetscBool has_file, has_n;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Mesh", "SlumpScene");
   PetscCall(PetscOptionsString("-mesh_file", "Gmsh .msh file (physical names become boundary labels)", "", file, file, sizeof(file), &has_file));
+  PetscCall(PetscOptionsInt("-mesh_n", "Cells along x and y of the rectangle (a square grid; -mesh_nx, -mesh_ny override)", "", n, &n, &has_n));
+  if (has_n) {
+    PetscCheck(n > 0, comm, PETSC_ERR_USER_INPUT, "-mesh_n must be a positive integer; got %" PetscInt_FMT, n);
+    nx = ny = n;
+  }
   PetscCall(PetscOptionsInt("-mesh_nx", "Cells along x of the rectangle", "", nx, &nx, NULL));
   PetscCall(PetscOptionsInt("-mesh_ny", "Cells along y of the rectangle", "", ny, &ny, NULL));
   PetscOptionsEnd();
