@@ -184,6 +184,31 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   IDACHECK(IDASetStopTime(mem, ti->tfinal));
   IDACHECK(IDASetMaxNumSteps(mem, ti->max_steps));
   if (ti->dt > 0) IDACHECK(IDASetInitStep(mem, ti->dt));
+  else {
+    /* IDA's own first step, min(1e-3 (tf - t0), 0.5/|u'|_WRMS), floored at
+       1e-7 (tf - t0): at tight tolerances (rtol 1e-8, atol 1e-9 on Couette)
+       it fell to ~1e-11, where the first Newton solve failed (IDA_CONV_FAIL
+       at t = 0); a floor of 1e-8 (tf - t0) and above worked (docs/sweeps.md). */
+    Vec       w;
+    PetscReal nrm, h0;
+    PetscInt  n;
+    PetscCall(VecDuplicate(X, &w));
+    PetscCall(VecCopy(X, w));
+    PetscCall(VecAbs(w));
+    PetscCall(VecScale(w, ti->rtol));
+    PetscCall(VecShift(w, ti->atol));
+    PetscCall(VecReciprocal(w));
+    PetscCall(VecPointwiseMult(w, w, Xdot));
+    PetscCall(VecPointwiseMult(w, w, idv));
+    PetscCall(VecNorm(w, NORM_2, &nrm));
+    PetscCall(VecGetSize(w, &n));
+    PetscCall(VecDestroy(&w));
+    nrm /= PetscSqrtReal((PetscReal)n);
+    h0 = 1e-3 * (ti->tfinal - ti->t0);
+    if (nrm > 0) h0 = PetscMin(h0, 0.5 / nrm);
+    h0 = PetscMax(h0, 1e-7 * (ti->tfinal - ti->t0));
+    IDACHECK(IDASetInitStep(mem, h0));
+  }
   PetscCall(SlumpIntegratorResolveArrest(ti, ti->t0, X));
   if (ti->narrest) {
     int dir[16];
