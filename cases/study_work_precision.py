@@ -22,11 +22,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 SETUPS = {
     "couette": dict(scene="couette_cessation", mesh="mesh_ny", meshes="8,16,32,64",
                     rtols="1e-2,1e-3,1e-4,1e-5,1e-6,1e-7,1e-8", dts="1e-2,5e-3,2.5e-3,1.25e-3,6.25e-4,3.125e-4,1.5625e-4",
-                    opts=["-bn", "1", "-rheology_papanastasiou_m", "1e4", "-time_final", "0.2"], reference=None),
+                    opts=["-bn", "1", "-rheology_papanastasiou_m", "1e4", "-time_final", "0.2"], reference=None, title="Couette cessation, Bn 1, m 1e4"),
     "duct": dict(scene="duct_cessation", mesh="mesh_n", meshes="8,16,32",
                  rtols="1e-2,1e-3,1e-4,1e-5,1e-6", dts="4e-3,2e-3,1e-3,5e-4,2.5e-4,1.25e-4",
                  opts=["-rheology_papanastasiou_m", "1e4", "-time_final", "0.1"],
-                 reference=["-mesh_n", "64", "-time_rtol", "1e-7", "-time_atol", "1e-11"]),
+                 reference=["-mesh_n", "64", "-time_rtol", "1e-5", "-time_atol", "1e-9"], title="duct cessation, Bn 0.1, m 1e4"),
 }
 COMMON = ["-arrest_stop", "first", "-time_max_steps", "20000"]
 
@@ -51,6 +51,8 @@ def main():
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--docs", default=os.path.join(HERE, "..", "docs"))
     ap.add_argument("--work", default="out/study_wp")
+    ap.add_argument("--methods", default="ida,ida_linesearch,bdf2", help="comma-separated subset of ida, ida_linesearch, bdf2")
+    ap.add_argument("--reuse", action="store_true", help="keep the CSV files of methods already in docs/studies")
     a = ap.parse_args()
     s = SETUPS[a.case]
     mpi = [a.mpiexec, "--oversubscribe", "--allow-run-as-root", "-n", str(a.ranks)]
@@ -64,7 +66,17 @@ def main():
         ref = float(rows_of(os.path.join(out, "summary.csv"))[0]["t_arrest"])
         print("reference arrest time %.10g (%s)" % (ref, " ".join(s["reference"])))
     files = {}
-    for method, opt, values, extra in (("ida", "time_rtol", s["rtols"], ["-time_atol", "1e-9"]), ("bdf2", "time_dt", s["dts"], ["-time_integrator", "bdf2"])):
+    methods = (("ida", "time_rtol", s["rtols"], ["-time_atol", "1e-9"]),
+               ("ida_linesearch", "time_rtol", s["rtols"], ["-time_atol", "1e-9", "-ida_nonlinear_solver", "linesearch"]),
+               ("bdf2", "time_dt", s["dts"], ["-time_integrator", "bdf2"]))
+    for method, opt, values, extra in methods:
+        if method not in a.methods.split(","):
+            continue
+        dst = os.path.join(a.docs, "studies", "wp_%s_%s.csv" % (a.case, method))
+        if a.reuse and os.path.exists(dst):
+            print("reusing " + dst)
+            files[method] = dst
+            continue
         out = os.path.join(a.work, "%s_%s" % (a.case, method))
         cmd = mpi + [a.slump, "-scene", s["scene"], "-sweep", "%s:%s" % (opt, values), "-sweep2", "%s:%s" % (s["mesh"], s["meshes"]), "-output_dir", out] + s["opts"] + COMMON + extra
         print(" ".join(cmd), flush=True)
@@ -75,16 +87,16 @@ def main():
             if ref is not None:
                 r["reference"] = "%.10e" % ref
                 r["arrest_error"] = "%.6e" % (abs(float(r["t_arrest"]) - ref) / ref) if r["status"] == "ok" and r["t_arrest"] else ""
-        dst = os.path.join(a.docs, "studies", "wp_%s_%s.csv" % (a.case, method))
         write(dst, rows)
         files[method] = dst
-    subprocess.run([sys.executable, os.path.join(HERE, "plot_sweep.py"), "work", files["ida"] + ":IDA", files["bdf2"] + ":BDF2 fixed", "--curve", s["mesh"],
-                    "--title", "%s, Bn 1, m 1e4: arrest-time error against wall time" % s["scene"].replace("_", " "), "--out", os.path.join(a.docs, "wp_%s.png" % a.case)], check=True)
+    labels = {"ida": "IDA Newton", "ida_linesearch": "IDA line search", "bdf2": "BDF2 fixed"}
+    subprocess.run([sys.executable, os.path.join(HERE, "plot_sweep.py"), "work"] + [files[m] + ":" + labels[m] for m in files] + [ "--curve", s["mesh"],
+                    "--title", "%s: arrest-time error against wall time" % s["title"], "--out", os.path.join(a.docs, "wp_%s.png" % a.case)], check=True)
     # the cheapest run reaching 1 % for each method and mesh, and the ratio
-    lines = ["%s: cheapest run with arrest-time error <= 1e-2 (error against %s)" % (s["scene"], "the reference run " + " ".join(s["reference"]) if ref else "the exact model's arrest time"),
+    lines = ["%s: cheapest run (fewest residual evaluations) with arrest-time error <= 1e-2 (error against %s)" % (s["scene"], "the reference run " + " ".join(s["reference"]) if ref else "the exact model's arrest time"),
              "%-8s %-6s %-10s %-12s %-10s %-10s %-8s" % ("mesh", "method", "parameter", "error", "res_evals", "wall_time", "steps")]
     best = {}
-    for method in ("ida", "bdf2"):
+    for method in files:
         for r in rows_of(files[method]):
             if r["status"] != "ok" or not r["arrest_error"] or float(r["arrest_error"]) > 1e-2:
                 continue
@@ -92,13 +104,16 @@ def main():
             if key not in best or int(r["res_evals"]) < int(best[key]["res_evals"]):
                 best[key] = r
     for mesh in s["meshes"].split(","):
-        for method in ("ida", "bdf2"):
+        for method in ("ida", "ida_linesearch", "bdf2"):
             r = best.get((mesh, method))
             if r:
-                lines.append("%-8s %-6s %-10s %-12s %-10s %-10s %-8s" % (mesh, method, r["time_rtol" if method == "ida" else "time_dt"], r["arrest_error"], r["res_evals"], r["wall_time"], r["steps"]))
+                lines.append("%-8s %-6s %-10s %-12s %-10s %-10s %-8s" % (mesh, method, r["time_dt" if method == "bdf2" else "time_rtol"], r["arrest_error"], r["res_evals"], r["wall_time"], r["steps"]))
         if (mesh, "ida") in best and (mesh, "bdf2") in best:
             ratio = int(best[(mesh, "bdf2")]["res_evals"]) / int(best[(mesh, "ida")]["res_evals"])
-            lines.append("%-8s ratio of residual evaluations BDF2 / IDA at 1 %%: %.2f" % (mesh, ratio))
+            lines.append("%-8s ratio of residual evaluations BDF2 / IDA (Newton) at 1 %%: %.3f" % (mesh, ratio))
+        if (mesh, "ida_linesearch") in best and (mesh, "bdf2") in best:
+            ratio = int(best[(mesh, "bdf2")]["res_evals"]) / int(best[(mesh, "ida_linesearch")]["res_evals"])
+            lines.append("%-8s ratio of residual evaluations BDF2 / IDA (line search) at 1 %%: %.3f" % (mesh, ratio))
     text = "\n".join(lines) + "\n"
     print(text)
     with open(os.path.join(a.docs, "studies", "wp_%s.txt" % a.case), "w") as f:

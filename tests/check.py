@@ -983,6 +983,27 @@ def test_sweep_invalid():
         fail("the sweep's last line should count 2 failed runs:\n" + p.stdout[-500:])
 
 
+def test_tight_tolerances():
+    """IDA from rtol 1e-2 to 1e-8 (atol 1e-9; before the first step was
+    floored, rtol <= 1e-5 failed at t = 0): both rows ok, each arrest within
+    2e-3 of the exact model's (8 cells across: the mesh error is 1.5e-3), and
+    the two within 1e-3 of each other (Couette Bn 1, m 1e4)."""
+    w = work("tight_tolerances")
+    run_sweep(["-mesh_ny", "8", "-time_final", "0.15", "-arrest_stop", "first", "-time_atol", "1e-9", "-sweep", "time_rtol:1e-2,1e-8"], w)
+    rows = sweep_rows(w)
+    t = {}
+    for r in rows:
+        print("rtol %s: %s, t_arrest %s, exact %s, error %s, %s steps" % (r["time_rtol"], r["status"], r["t_arrest"], r["t_arrest_exact"], r["arrest_error"], r["steps"]))
+        if r["status"] != "ok":
+            fail("rtol %s: status %s (%s)" % (r["time_rtol"], r["status"], r["reason"]))
+        if not float(r["arrest_error"]) <= 2e-3:
+            fail("rtol %s: error against the exact model %s > 2e-3" % (r["time_rtol"], r["arrest_error"]))
+        t[r["time_rtol"]] = float(r["t_arrest"])
+    d = abs(t["1e-2"] - t["1e-8"]) / t["1e-8"]
+    if not d <= 1e-3:
+        fail("rtol 1e-2 and 1e-8 differ by %g relative (> 1e-3)" % d)
+
+
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
 
 if __name__ == "__main__":

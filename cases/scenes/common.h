@@ -63,7 +63,16 @@ static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, Slum
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
   PetscCall(SlumpProblemCreate(comm, &p0));
-  PetscCall(SlumpSceneSetMesh(scene, p0, comm, lower, upper));
+  {
+    /* the run's own (distributed) mesh: a second mesh could be partitioned
+       differently, and then X0 and X would not match rank by rank (seen on
+       2 ranks with 64 x 64 cells) */
+    DM dm, dm0;
+    PetscCall(SlumpProblemGetDM(prob, &dm));
+    PetscCall(DMClone(dm, &dm0));
+    PetscCall(SlumpProblemSetMesh(p0, dm0));
+    PetscCall(DMDestroy(&dm0));
+  }
   PetscCall(configure(scene, p0));
   PetscCall(SlumpProblemSetFromOptions(p0));
   PetscCall(SlumpProblemGetRheology(prob, &r));
