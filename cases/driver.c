@@ -158,6 +158,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   SlumpRheology   rheo;
   SlumpStats      stats;
   RunCtx          r;
+  SlumpRunResult  local, *R = res ? res : &local;
   DM              dm;
   Vec             X;
   PetscLogDouble  t_start, t_end;
@@ -304,15 +305,47 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   ncells = cEnd - cStart;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ncells, 1, MPIU_INT, MPI_SUM, comm));
 
+  {
+    /* the run's numbers: summary.csv and, for sweeps, the caller */
+    SlumpRheologyType rtype;
+    const char       *regname;
+    PetscCall(PetscMemzero(R, sizeof(*R)));
+    PetscCall(PetscStrncpy(R->scene, scenename, sizeof(R->scene)));
+    PetscCall(SlumpRheologyGetType(rheo, &rtype));
+    PetscCall(PetscStrncpy(R->rheology, rtype, sizeof(R->rheology)));
+    PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &R->regularisation_value, NULL));
+    PetscCall(PetscStrncpy(R->regularisation, regname ? regname : "none", sizeof(R->regularisation)));
+    PetscCall(PetscStrncpy(R->integrator, scene->steady ? "steady" : SlumpIntegratorTypes[itype], sizeof(R->integrator)));
+    R->rtol     = rtol;
+    R->atol     = atol;
+    R->dt       = dt;
+    R->ranks    = size;
+    R->cells    = ncells;
+    R->unknowns = N;
+    R->t_final  = t_final;
+    R->t_arrest = t_arrest;
+    R->narrest  = narrest;
+    for (PetscInt k = 0; k < narrest; ++k) {
+      R->arrest_diag[k]      = arrest[k].diag;
+      R->arrest_kind[k]      = arrest[k].kind;
+      R->arrest_time[k]      = arrest[k].t_arrest;
+      R->arrest_threshold[k] = arrest[k].threshold;
+    }
+    R->stats     = stats;
+    R->wall_time = t_end - t_start;
+    R->peak_mb   = peak;
+    R->err_u     = err[0];
+    R->norm_u    = nrm[0];
+    R->nresult   = scene->nresult;
+    for (PetscInt i = 0; i < scene->nresult; ++i) {
+      PetscCall(PetscStrncpy(R->rname[i], scene->rname[i], sizeof(R->rname[i])));
+      R->rvalue[i] = scene->rvalue[i];
+    }
+  }
   /* --- summary --- */
   if (!r.rank) {
     char              path[PETSC_MAX_PATH_LEN];
     FILE             *fp;
-    SlumpRheologyType rtype;
-    const char       *regname;
-    PetscReal         regval;
-    PetscCall(SlumpRheologyGetType(rheo, &rtype));
-    PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &regval, NULL));
     PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.csv", dir));
     fp = fopen(path, "w");
     PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
@@ -321,7 +354,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     fprintf(fp, ",t_final,t_arrest,steps,res_evals,jac_evals,newton_its,lin_its,lin_solves,err_test_fails,conv_fails,h_min,h_max,wall_time,peak_memory_mb,kinetic_energy,mean_shear_rate,max_shear_rate,yielded_fraction,flow_rate,err_u_l2,norm_u_l2,err_p_l2,norm_p_l2");
     for (PetscInt k = 0; k < narrest; ++k) fprintf(fp, ",t_arrest_%s,threshold_%s", arrestname[k], arrestname[k]);
     for (PetscInt i = 0; i < scene->nresult; ++i) fprintf(fp, ",%s", scene->rname[i]);
-    fprintf(fp, "\n%s,%s,%s,%.6e,%s,%.3e,%.3e,%.6e,%d,%d,%d", scenename, rtype, regname ? regname : "none", (double)regval, scene->steady ? "steady" : SlumpIntegratorTypes[itype], (double)rtol, (double)atol, (double)dt, (int)size, (int)ncells, (int)N);
+    fprintf(fp, "\n%s,%s,%s,%.6e,%s,%.3e,%.3e,%.6e,%d,%d,%d", scenename, R->rheology, R->regularisation, (double)R->regularisation_value, R->integrator, (double)rtol, (double)atol, (double)dt, (int)size, (int)ncells, (int)N);
     for (PetscInt i = 0; i < scene->nparam; ++i) fprintf(fp, ",%.10e", (double)scene->pvalue[i]);
     fprintf(fp, ",%.10e,%.10e,%d,%d,%d,%d,%d,%d,%d,%d,%.6e,%.6e,%.4f,%.1f,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e", (double)t_final, (double)t_arrest, (int)stats.steps, (int)stats.res_evals, (int)stats.jac_evals, (int)stats.newton_its, (int)stats.lin_its, (int)stats.lin_solves, (int)stats.err_test_fails, (int)stats.conv_fails, (double)(stats.steps ? stats.h_min : 0.0), (double)stats.h_max, (double)(t_end - t_start), (double)peak, (double)r.last.kinetic_energy, (double)r.last.mean_shear_rate, (double)r.last.max_shear_rate, (double)r.last.yielded_fraction, (double)r.last.flow_rate, (double)err[0], (double)nrm[0], (double)err[1], (double)nrm[1]);
     for (PetscInt k = 0; k < narrest; ++k) fprintf(fp, ",%.10e,%.10e", (double)arrest[k].t_arrest, (double)arrest[k].threshold);
@@ -330,42 +363,6 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     fclose(fp);
     if (r.series) fclose(r.series);
     if (r.steps) fclose(r.steps);
-  }
-  if (res) {
-    SlumpRheologyType rtype;
-    const char       *regname;
-    PetscCall(PetscMemzero(res, sizeof(*res)));
-    PetscCall(PetscStrncpy(res->scene, scenename, sizeof(res->scene)));
-    PetscCall(SlumpRheologyGetType(rheo, &rtype));
-    PetscCall(PetscStrncpy(res->rheology, rtype, sizeof(res->rheology)));
-    PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &res->regularisation_value, NULL));
-    PetscCall(PetscStrncpy(res->regularisation, regname ? regname : "none", sizeof(res->regularisation)));
-    PetscCall(PetscStrncpy(res->integrator, scene->steady ? "steady" : SlumpIntegratorTypes[itype], sizeof(res->integrator)));
-    res->rtol     = rtol;
-    res->atol     = atol;
-    res->dt       = dt;
-    res->ranks    = size;
-    res->cells    = ncells;
-    res->unknowns = N;
-    res->t_final  = t_final;
-    res->t_arrest = t_arrest;
-    res->narrest  = narrest;
-    for (PetscInt k = 0; k < narrest; ++k) {
-      res->arrest_diag[k]      = arrest[k].diag;
-      res->arrest_kind[k]      = arrest[k].kind;
-      res->arrest_time[k]      = arrest[k].t_arrest;
-      res->arrest_threshold[k] = arrest[k].threshold;
-    }
-    res->stats     = stats;
-    res->wall_time = t_end - t_start;
-    res->peak_mb   = peak;
-    res->err_u     = err[0];
-    res->norm_u    = nrm[0];
-    res->nresult   = scene->nresult;
-    for (PetscInt i = 0; i < scene->nresult; ++i) {
-      PetscCall(PetscStrncpy(res->rname[i], scene->rname[i], sizeof(res->rname[i])));
-      res->rvalue[i] = scene->rvalue[i];
-    }
   }
   if (!banner) goto cleanup;
   PetscCall(PetscPrintf(comm, "summary: scene %s, t %.6g", scenename, (double)t_final));

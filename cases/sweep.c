@@ -78,15 +78,26 @@ static PetscBool GetResult(const SlumpRunResult *r, const char name[], PetscReal
   return PETSC_FALSE;
 }
 
-static const char *const TimeColumns[] = {"mean_shear_rate", "max_shear_rate", "l2_shear_rate", "kinetic_energy", "yielded_fraction"};
+/* The columns between reason and wall_time, left empty for a failed run. */
+static const char        RunColumns[]    = "scene,rheology,regularisation,regularisation_value,integrator,rtol,atol,dt,ranks,cells,unknowns,t_final,t_arrest";
+static const char *const TimeColumns[]   = {"mean_shear_rate", "max_shear_rate", "l2_shear_rate", "kinetic_energy", "yielded_fraction"};
+static const char        ResultColumns[] = "threshold,t_stop_exact,t_arrest_exact,arrest_error,stop_error,t_stop_bound,err_u_rel,steps,res_evals,jac_evals,newton_its,lin_its,err_test_fails,conv_fails,h_min";
+#define NTIME (sizeof(TimeColumns) / sizeof(TimeColumns[0]))
+
+static int NumFields(const char list[])
+{
+  int n = 1;
+  for (const char *c = list; *c; ++c) n += *c == ',';
+  return n;
+}
 
 static void Header(char *row, size_t len, const SweepList *l, int nl)
 {
   snprintf(row, len, "run");
   for (int j = 0; j < nl; ++j) snprintf(row + strlen(row), len - strlen(row), ",%s", l[j].name);
-  snprintf(row + strlen(row), len - strlen(row), ",status,reason,scene,rheology,regularisation,regularisation_value,integrator,rtol,atol,dt,ranks,cells,unknowns,t_final,t_arrest");
-  for (size_t k = 0; k < sizeof(TimeColumns) / sizeof(TimeColumns[0]); ++k) snprintf(row + strlen(row), len - strlen(row), ",t_arrest_%s", TimeColumns[k]);
-  snprintf(row + strlen(row), len - strlen(row), ",threshold,t_stop_exact,t_arrest_exact,arrest_error,stop_error,t_stop_bound,err_u_rel,steps,res_evals,jac_evals,newton_its,lin_its,err_test_fails,conv_fails,h_min,wall_time,peak_memory_mb,results\n");
+  snprintf(row + strlen(row), len - strlen(row), ",status,reason,%s", RunColumns);
+  for (size_t k = 0; k < NTIME; ++k) snprintf(row + strlen(row), len - strlen(row), ",t_arrest_%s", TimeColumns[k]);
+  snprintf(row + strlen(row), len - strlen(row), ",%s,wall_time,peak_memory_mb,results\n", ResultColumns);
 }
 
 static void Row(char *row, size_t len, int run, const SweepList *l, int nl, const int *idx, const char *status, const char *reason, const SlumpRunResult *r, PetscBool ok, double wall)
@@ -101,13 +112,14 @@ static void Row(char *row, size_t len, int run, const SweepList *l, int nl, cons
   snprintf(row + strlen(row), len - strlen(row), ",%s,%s", status, q);
   if (!ok) {
     /* the columns of a run that did not finish stay empty */
-    for (int k = 0; k < 33; ++k) snprintf(row + strlen(row), len - strlen(row), ",");
+    const int nempty = NumFields(RunColumns) + (int)NTIME + NumFields(ResultColumns);
+    for (int k = 0; k < nempty; ++k) snprintf(row + strlen(row), len - strlen(row), ",");
     snprintf(row + strlen(row), len - strlen(row), ",%.4f,,\n", wall);
     return;
   }
   snprintf(row + strlen(row), len - strlen(row), ",%s,%s,%s,%.6e,%s,%.3e,%.3e,%.6e,%d,%d,%d,%.10e", r->scene, r->rheology, r->regularisation, (double)r->regularisation_value, r->integrator, (double)r->rtol, (double)r->atol, (double)r->dt, (int)r->ranks, (int)r->cells, (int)r->unknowns, (double)r->t_final);
   Put(row, len, ",%.10e", (double)r->t_arrest, r->t_arrest >= 0 ? PETSC_TRUE : PETSC_FALSE);
-  for (size_t k = 0; k < sizeof(TimeColumns) / sizeof(TimeColumns[0]); ++k) {
+  for (size_t k = 0; k < NTIME; ++k) {
     PetscInt c = -1;
     for (PetscInt j = r->narrest - 1; j >= 0; --j)
       if (!strcmp(SlumpDiagnosticNames[r->arrest_diag[j]], TimeColumns[k])) c = j;
@@ -231,7 +243,7 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
       /* the reason: the error's first message (every rank of the group saw it) */
       status = ierr == PETSC_ERR_NOT_CONVERGED ? "not_converged" : (ierr == PETSC_ERR_USER_INPUT || ierr == PETSC_ERR_ARG_WRONG || ierr == PETSC_ERR_ARG_OUTOFRANGE ? "invalid" : "error");
       PetscCall(PetscSNPrintf(reason, sizeof(reason), "%s", SlumpLastErrorMessage()[0] ? SlumpLastErrorMessage() : "unknown error"));
-      ++nfailed;
+      if (!grank) ++nfailed; /* counted once per group */
     } else if (res.narrest && res.t_arrest < 0) {
       status = "no_arrest";
       PetscCall(PetscSNPrintf(reason, sizeof(reason), "no arrest criterion fired before t = %g", (double)res.t_final));
@@ -248,13 +260,8 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
   }
   PetscCallMPI(MPI_Barrier(comm));
   PetscCall(PetscTime(&t1));
-  {
-    int tot[2] = {nfailed, 0};
-    /* count failures once per group */
-    if (grank) tot[0] = 0;
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, tot, 1, MPI_INT, MPI_SUM, comm));
-    PetscCall(PetscPrintf(comm, "sweep: %d runs, %d failed (see the status column), %.2f s on %d rank%s; rows in %s\n", nruns, tot[0], (double)(t1 - t0), (int)size, size > 1 ? "s" : "", path));
-  }
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &nfailed, 1, MPI_INT, MPI_SUM, comm));
+  PetscCall(PetscPrintf(comm, "sweep: %d runs, %d failed (see the status column), %.2f s on %d rank%s; rows in %s\n", nruns, nfailed, (double)(t1 - t0), (int)size, size > 1 ? "s" : "", path));
   PetscCallMPI(MPI_Comm_free(&sub));
   PetscCall(PetscFree(l));
   PetscFunctionReturn(0);

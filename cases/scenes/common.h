@@ -165,13 +165,13 @@ static inline void SlumpSceneSetCessationDefaults(SlumpScene scene, PetscReal tf
 /* The exact (unregularised) cessation of a 1-D strip of width L as the
  * scene's reference (timeint/alg2.c, ALG2, extrapolated in dt), for the
  * Bingham models (papanastasiou, bercovier, bingham_simple) with a yield
- * stress. u0(y, ctx) is the initial profile for 0 < y < L, t_scale the time
- * scale (the energy bound) that sets dt = t_scale / -exact_steps. The arrest
+ * stress. u0(y, ctx) is the initial profile for 0 < y < L; the scene's result
+ * t_stop_bound (the energy bound) sets dt = t_stop_bound / -exact_steps. The arrest
  * time is computed for the mean shear rate only. Options: -exact_reference
  * (default true), -exact_cells (400), -exact_steps (1000). The last result
  * is kept, so the runs of a sweep over a regularisation parameter compute
  * it once per process. */
-static inline PetscErrorCode SlumpSceneStripExact(SlumpProblem prob, PetscReal L, PetscReal (*u0)(PetscReal, void *), void *ctx, PetscReal key, PetscReal t_scale, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest)
+static inline PetscErrorCode SlumpSceneStripExact(SlumpScene scene, SlumpProblem prob, PetscReal L, PetscReal (*u0)(PetscReal, void *), void *ctx, PetscReal key, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest)
 {
   static PetscReal      cache[9] = {-1, -1, -1, -1, -1, -1, -1, -1, -1}, cached[2];
   SlumpRheology         rheo;
@@ -180,9 +180,12 @@ static inline PetscErrorCode SlumpSceneStripExact(SlumpProblem prob, PetscReal L
   PetscReal             tau0, eta, rho = 1.0;
   PetscBool             on = PETSC_TRUE, bingham = PETSC_FALSE, same;
   PetscInt              cells = 400, steps = 1000;
+  PetscReal             t_scale = 0.0;
   MPI_Comm              comm;
   PetscFunctionBeginUser;
   *t_stop = *t_arrest = -1.0;
+  PetscCall(SlumpSceneGetResult(scene, "t_stop_bound", &t_scale, &same));
+  if (!same) t_scale = 0.0;
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologyGetType(rheo, &type));
   for (int k = 0; k < 3; ++k) {

@@ -77,11 +77,8 @@ static PetscReal ExactU0(PetscReal y, void *ctx)
 static PetscErrorCode ExactArrest(SlumpScene scene, SlumpProblem prob, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest)
 {
   CouetteCtx *c = (CouetteCtx *)scene->ctx;
-  PetscReal   bound = 0.0;
-  PetscBool   found;
   PetscFunctionBeginUser;
-  PetscCall(SlumpSceneGetResult(scene, "t_stop_bound", &bound, &found));
-  PetscCall(SlumpSceneStripExact(prob, c->H, ExactU0, c, 0.0, found ? bound : 0.0, diag, threshold, t_stop, t_arrest));
+  PetscCall(SlumpSceneStripExact(scene, prob, c->H, ExactU0, c, 0.0, diag, threshold, t_stop, t_arrest));
   PetscFunctionReturn(0);
 }
 

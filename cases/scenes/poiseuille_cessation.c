@@ -87,12 +87,9 @@ static PetscReal ExactU0(PetscReal yy, void *ctx)
 static PetscErrorCode ExactArrest(SlumpScene scene, SlumpProblem prob, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest)
 {
   CessationCtx *c = (CessationCtx *)scene->ctx;
-  PetscReal     bound = 0.0;
-  PetscBool     found;
   PetscFunctionBeginUser;
   PetscCall(SlumpSceneYieldParameters(prob, &c->tau0, &c->eta));
-  PetscCall(SlumpSceneGetResult(scene, "t_stop_bound", &bound, &found));
-  PetscCall(SlumpSceneStripExact(prob, 2.0 * c->H, ExactU0, c, c->newtonian ? 1.0 : 0.0, found ? bound : 0.0, diag, threshold, t_stop, t_arrest));
+  PetscCall(SlumpSceneStripExact(scene, prob, 2.0 * c->H, ExactU0, c, c->newtonian ? 1.0 : 0.0, diag, threshold, t_stop, t_arrest));
   PetscFunctionReturn(0);
 }
 
