@@ -4,6 +4,7 @@
  * (scene, mesh, rheology, solver options) before the output directory is
  * created, so a mistake leaves nothing half-written behind. */
 #include "slumpscene.h"
+#include "slumpinterface.h"
 #include <time.h>
 
 /* The first message of the last error, for the sweep's rows. */
@@ -251,6 +252,16 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   PetscCall(PetscObjectSetName((PetscObject)X, "solution"));
   PetscCall(SlumpProblemProjectInitialState(prob, 0.0, X));
   if (scene->initial) PetscCall(scene->initial(scene, prob, X));
+  {
+    SlumpLevelSet ls;
+    PetscCall(SlumpProblemGetLevelSet(prob, &ls));
+    if (ls) {
+      char path[PETSC_MAX_PATH_LEN];
+      PetscCall(PetscSNPrintf(path, sizeof(path), "%s/interface.csv", dir));
+      PetscCall(SlumpLevelSetSetLog(ls, path));
+      PetscCall(SlumpLevelSetRecordVolume(ls, 0.0, X));
+    }
+  }
   PetscCall(PetscMemzero(&stats, sizeof(stats)));
   if (eigen) {
     PetscReal l1;

@@ -21,6 +21,7 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Duct(SlumpScene, SlumpProblem, MPI_
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DuctCessation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CavityCessation(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_LevelSetRotation(SlumpScene, SlumpProblem, MPI_Comm);
 
 PetscErrorCode SlumpSceneRegister(const char name[], const char description[], SlumpSceneCreateFn create)
 {
@@ -46,6 +47,7 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("bagnold", "mu(I) layer on a rough inclined plane (Chauchat & Medale); analytic Bagnold profile", SlumpSceneCreate_Bagnold));
   PetscCall(SlumpSceneRegister("vertical_chute", "mu(I) flow between rough vertical walls at uniform pressure; analytic profile and plug", SlumpSceneCreate_VerticalChute));
   PetscCall(SlumpSceneRegister("duct", "anti-plane Bingham flow in a square duct (Mosolov problem); flow threshold Bn_c = 1/(2 + sqrt(pi))", SlumpSceneCreate_Duct));
+  PetscCall(SlumpSceneRegister("levelset_rotation", "circle or slotted disc in a rotating field (prescribed velocity): level-set transport and reinitialisation", SlumpSceneCreate_LevelSetRotation));
   PetscCall(SlumpSceneRegister("mms_stokes", "manufactured Stokes solution on the unit square (Dirichlet + traction); spatial orders", SlumpSceneCreate_MMSStokes));
   PetscFunctionReturn(0);
 }

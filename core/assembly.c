@@ -28,12 +28,12 @@ static PetscErrorCode RegisterEvents(void)
 }
 
 struct _n_SlumpAssembly {
-  PetscInt        dim, Nf, Nq, Nb[2], Nc[2], off[2], NbTot, cStart, cEnd;
+  PetscInt        dim, Nf, Nq, Nb[SLUMP_MAX_FIELDS], Nc[SLUMP_MAX_FIELDS], off[SLUMP_MAX_FIELDS], NbTot, cStart, cEnd;
   PetscInt        comp[MAXNB];          /* component of each basis function (vector field) */
   PetscReal       w[MAXQ], xi[MAXQ * 3];
   PetscReal       phi[MAXQ * MAXNB];    /* value of basis b (its non-zero component) at q */
   PetscReal       dphi[MAXQ * MAXNB * 3]; /* reference gradient */
-  PetscInt        uOff[3], uOff_x[3];
+  PetscInt        uOff[SLUMP_MAX_FIELDS + 1], uOff_x[SLUMP_MAX_FIELDS + 1];
   /* per cell, computed once (the mesh does not move) */
   PetscInt        ncell;
   PetscReal      *geom;  /* v0[dim], J[dim*dim], invJ[dim*dim], detJ */
@@ -199,7 +199,7 @@ PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, V
   SlumpAssembly      a = prob->assembly;
   PetscDS            ds;
   PetscSection       s;
-  PetscPointFunc     f0[2], f1[2];
+  PetscPointFunc     f0[SLUMP_MAX_FIELDS], f1[SLUMP_MAX_FIELDS];
   const PetscScalar *constants;
   PetscInt           nc, dim = a->dim;
   CellData          *cd;
@@ -269,7 +269,7 @@ PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, V
 PetscErrorCode SlumpAssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat Jac)
 {
   PetscDS       ds;
-  PetscPointJac g[2][2][4];
+  PetscPointJac g[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4];
   PetscFunctionBeginUser;
   PetscCall(DMGetDS(prob->dm, &ds));
   for (PetscInt f = 0; f < prob->assembly->Nf; ++f)
@@ -280,7 +280,7 @@ PetscErrorCode SlumpAssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX, V
 
 /* The same with an explicit table of kernels g[test field][trial field][g0..g3]
    (NULL: none), e.g. the Laplacian and mass matrix of the eigenproblem. */
-PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscPointJac g[2][2][4], Mat Jac)
+PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscPointJac g[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4], Mat Jac)
 {
   SlumpAssembly      a = prob->assembly;
   PetscDS            ds;
@@ -481,5 +481,22 @@ PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const 
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, Q, 2, MPIU_REAL, MPIU_SUM, prob->comm));
   *integral = Q[0];
   if (length) *length = Q[1];
+  PetscFunctionReturn(0);
+}
+
+/* Local indices of field `field`'s dofs in the closure of every local cell
+   (ncell x nb, row-major; the caller frees idx). */
+PetscErrorCode SlumpProblemGetFieldClosure(SlumpProblem prob, PetscInt field, PetscInt *ncell, PetscInt *nb, PetscInt **idx, PetscInt *cStart)
+{
+  SlumpAssembly a = prob->assembly;
+  PetscFunctionBeginUser;
+  PetscCheck(a, prob->comm, PETSC_ERR_ORDER, "Call SlumpProblemSetUp() first");
+  PetscCheck(field >= 0 && field < a->Nf, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "No field %" PetscInt_FMT, field);
+  *ncell = a->ncell;
+  *nb    = a->Nb[field];
+  if (cStart) *cStart = a->cStart;
+  PetscCall(PetscMalloc1(PetscMax(a->ncell * a->Nb[field], 1), idx));
+  for (PetscInt c = 0; c < a->ncell; ++c)
+    for (PetscInt b = 0; b < a->Nb[field]; ++b) (*idx)[c * a->Nb[field] + b] = a->lidx[c * a->NbTot + a->off[field] + b];
   PetscFunctionReturn(0);
 }

@@ -25,7 +25,7 @@ static void g0_mass(SLUMP_PWJ_ARGS, PetscScalar g0[])
 
 PetscErrorCode SlumpProblemComputeViscousEigenvalue(SlumpProblem prob, PetscReal *lambda1)
 {
-  PetscPointJac g[2][2][4] = {{{NULL}}};
+  PetscPointJac g[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4] = {{{NULL}}};
   Mat           A, K, M;
   Vec           X;
   IS            isu, isp;

@@ -2,7 +2,7 @@
  * boundary conditions, and the constants handed to the pointwise kernels. */
 #include "slumpimpl.h"
 
-const char *const SlumpEffectNames[] = {"inertia", "convection", "body_force"};
+const char *const SlumpEffectNames[] = {"inertia", "convection", "body_force", "free_surface"};
 
 static PetscErrorCode ZeroFn(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx);
 
@@ -16,6 +16,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->velocityDegree = 2;
   p->pressureDegree = 1;
   p->quadOrder      = 3; /* (3+1)^2 = 16 points: exact to degree 7 */
+  p->extraField     = -1;
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
   PetscFunctionReturn(0);
@@ -35,6 +36,7 @@ PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
   PetscCall(DMDestroy(&p->dmDiag));
   PetscCall(DMDestroy(&p->dm));
   PetscCall(SlumpRheologyDestroy(&p->rheo));
+  if (p->extraOps.destroy) PetscCall(p->extraOps.destroy(p->extraCtx));
   PetscCall(PetscFree(*prob));
   PetscFunctionReturn(0);
 }
@@ -169,6 +171,75 @@ PetscErrorCode SlumpProblemSetInitialVelocity(SlumpProblem prob, SlumpPointFn u0
   PetscFunctionBeginUser;
   prob->u0    = u0;
   prob->u0ctx = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetPrescribedVelocity(SlumpProblem prob, SlumpPointFn u, SlumpPointFn u_t, void *ctx)
+{
+  PetscFunctionBeginUser;
+  prob->uPresc    = u;
+  prob->uPresc_t  = u_t;
+  prob->uPrescCtx = ctx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetExtraField(SlumpProblem prob, const SlumpExtraFieldOps *ops, void *ctx)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!prob->setup, prob->comm, PETSC_ERR_ORDER, "Attach the extra field before SlumpProblemSetUp()");
+  PetscCheck(prob->formulation != SLUMP_FORMULATION_ANTIPLANE, prob->comm, PETSC_ERR_SUP, "An anti-plane flow carries no extra field");
+  if (prob->extraOps.destroy) PetscCall(prob->extraOps.destroy(prob->extraCtx));
+  prob->extraOps   = *ops;
+  prob->extraCtx   = ctx;
+  prob->extraField = prob->formulation == SLUMP_FORMULATION_PLANE ? 2 : 1;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetExtraField(SlumpProblem prob, PetscInt *field, void **ctx)
+{
+  PetscFunctionBeginUser;
+  if (field) *field = prob->extraField;
+  if (ctx) *ctx = prob->extraCtx;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetExtraFieldIS(SlumpProblem prob, IS *isx)
+{
+  IS      *is;
+  PetscInt nf;
+  PetscFunctionBeginUser;
+  *isx = NULL;
+  if (prob->extraField < 0) PetscFunctionReturn(0);
+  PetscCall(DMCreateFieldIS(prob->dm, &nf, NULL, &is));
+  for (PetscInt f = 0; f < nf; ++f) {
+    if (f == prob->extraField) *isx = is[f];
+    else PetscCall(ISDestroy(&is[f]));
+  }
+  PetscCall(PetscFree(is));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemPostStep(SlumpProblem prob, PetscInt step, PetscReal t, Vec X, PetscBool *changed)
+{
+  PetscFunctionBeginUser;
+  *changed = PETSC_FALSE;
+  if (prob->extraOps.post_step) PetscCall(prob->extraOps.post_step(prob->extraCtx, prob, step, t, X, changed));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetLocalSolution(SlumpProblem prob, PetscReal t, Vec X, Vec *locX)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  *locX = prob->locX;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemComputeIntegrals(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, PetscPointFunc obj[], PetscReal result[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, n, obj, result));
   PetscFunctionReturn(0);
 }
 
@@ -402,6 +473,11 @@ PetscErrorCode SlumpProblemSetPointwise(SlumpProblem prob, PetscDS ds)
   SlumpRheologyPointwise pw;
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
+    /* the velocity is constrained everywhere: no momentum equation */
+    if (prob->extraField >= 0) PetscCall(prob->extraOps.set_pointwise(prob->extraCtx, prob, ds, prob->extraField));
+    PetscFunctionReturn(0);
+  }
   if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
     PetscCheck(!(prob->effects & SLUMP_EFFECT_CONVECTION), prob->comm, PETSC_ERR_SUP, "Convection does not act on an anti-plane flow");
     PetscCall(PetscDSSetResidual(ds, 0, prob->momentumSource ? prob->momentumSource : SlumpPwSelectAntiPlaneF0(prob->effects), pw.ap_f1_u));
@@ -413,6 +489,7 @@ PetscErrorCode SlumpProblemSetPointwise(SlumpProblem prob, PetscDS ds)
   PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectG0(prob->effects), SlumpPwSelectG1(prob->effects), NULL, pw.g3_uu));
   PetscCall(PetscDSSetJacobian(ds, 0, 1, NULL, NULL, pw.g2_up, NULL));
   PetscCall(PetscDSSetJacobian(ds, 1, 0, NULL, SlumpPwContinuityG1, NULL, NULL));
+  if (prob->extraField >= 0) PetscCall(prob->extraOps.set_pointwise(prob->extraCtx, prob, ds, prob->extraField));
   PetscFunctionReturn(0);
 }
 
@@ -424,6 +501,14 @@ static PetscErrorCode CreateFields(SlumpProblem prob, DM dm)
   PetscCall(DMGetDimension(dm, &dim));
   PetscCall(PetscFECreateLagrange(PETSC_COMM_SELF, dim, prob->formulation == SLUMP_FORMULATION_ANTIPLANE ? 1 : dim, PETSC_TRUE, prob->velocityDegree, prob->quadOrder, &fe[0]));
   PetscCall(PetscObjectSetName((PetscObject)fe[0], "velocity"));
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
+    PetscCheck(prob->extraField >= 0, prob->comm, PETSC_ERR_ORDER, "The transport formulation needs an extra field (a level set) to transport");
+    PetscCall(DMSetField(dm, 0, NULL, (PetscObject)fe[0]));
+    PetscCall(prob->extraOps.create_field(prob->extraCtx, prob, dm, 1));
+    PetscCall(DMCreateDS(dm));
+    PetscCall(PetscFEDestroy(&fe[0]));
+    PetscFunctionReturn(0);
+  }
   if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
     PetscCall(DMSetField(dm, 0, NULL, (PetscObject)fe[0]));
     PetscCall(DMCreateDS(dm));
@@ -435,6 +520,7 @@ static PetscErrorCode CreateFields(SlumpProblem prob, DM dm)
   PetscCall(PetscObjectSetName((PetscObject)fe[1], "pressure"));
   PetscCall(DMSetField(dm, 0, NULL, (PetscObject)fe[0]));
   PetscCall(DMSetField(dm, 1, NULL, (PetscObject)fe[1]));
+  if (prob->extraField >= 0) PetscCall(prob->extraOps.create_field(prob->extraCtx, prob, dm, 2));
   PetscCall(DMCreateDS(dm));
   PetscCall(PetscFEDestroy(&fe[0]));
   PetscCall(PetscFEDestroy(&fe[1]));
@@ -453,6 +539,7 @@ PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
   prob->constants[SLUMP_C_JACMODE] = prob->jacmode;
   for (PetscInt i = 0; i < 4; ++i) prob->constants[SLUMP_C_SCENE + i] = prob->sceneConst[i];
   PetscCall(SlumpRheologyGetConstants(prob->rheo, &n, &prob->constants[SLUMP_C_RHEO]));
+  if (prob->extraOps.set_constants) PetscCall(prob->extraOps.set_constants(prob->extraCtx, prob, &prob->constants[SLUMP_C_FIELD]));
   PetscCall(DMGetDS(prob->dm, &ds));
   PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
   PetscCall(DMGetDS(prob->dmDiag, &ds));
@@ -485,6 +572,19 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
   PetscCall(CreateFields(prob, prob->dmDiag));
   PetscCall(DMGetDS(prob->dm, &ds));
   PetscCall(SlumpProblemSetPointwise(prob, ds));
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
+    /* the prescribed velocity: a condition on every point of the mesh */
+    DMLabel        all;
+    PetscInt       pStart, pEnd;
+    const PetscInt one = 1;
+    PetscCheck(prob->uPresc, prob->comm, PETSC_ERR_ORDER, "The transport formulation needs a prescribed velocity (SlumpProblemSetPrescribedVelocity)");
+    PetscCall(DMCreateLabel(prob->dm, "slump_everywhere"));
+    PetscCall(DMGetLabel(prob->dm, "slump_everywhere", &all));
+    PetscCall(DMPlexGetChart(prob->dm, &pStart, &pEnd));
+    for (PetscInt pt = pStart; pt < pEnd; ++pt) PetscCall(DMLabelSetValue(all, pt, 1));
+    PetscCall(DMAddBoundary(prob->dm, DM_BC_ESSENTIAL, "prescribed_velocity", all, 1, &one, 0, 0, NULL, (void (*)(void))prob->uPresc, (void (*)(void))(prob->uPresc_t ? prob->uPresc_t : ZeroFn), prob->uPrescCtx, NULL));
+    if (prob->uPresc_t) prob->bcStatic = PETSC_FALSE;
+  }
   for (PetscInt b = 0; b < prob->nbc; ++b) {
     SlumpBC  *bc = &prob->bc[b];
     DMLabel   label;
@@ -523,7 +623,7 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
   PetscCall(DMCreateGlobalVector(prob->dmDiag, &prob->diagX));
   /* static boundary values: locate the constrained local entries by inserting
      into a vector of zeros and one of ones */
-  prob->bcStatic = PETSC_TRUE;
+  prob->bcStatic = (prob->formulation == SLUMP_FORMULATION_TRANSPORT && prob->uPresc_t) ? PETSC_FALSE : PETSC_TRUE;
   for (PetscInt b = 0; b < prob->nbc; ++b)
     if (prob->bc[b].kind == SLUMP_BC_DIRICHLET && prob->bc[b].g_t) prob->bcStatic = PETSC_FALSE;
   if (prob->bcStatic) {
@@ -586,15 +686,25 @@ PetscErrorCode SlumpProblemView(SlumpProblem prob, PetscViewer viewer)
   PetscCall(DMPlexGetHeightStratum(prob->dm, 0, &cStart, &cEnd));
   nc = cEnd - cStart;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nc, 1, MPIU_INT, MPI_SUM, prob->comm));
-  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; anti-plane P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " out-of-plane velocity\n", nc, prob->velocityDegree, Nu));
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; transport by a prescribed velocity (not an unknown)\n", nc));
+  else if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; anti-plane P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " out-of-plane velocity\n", nc, prob->velocityDegree, Nu));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; P%" PetscInt_FMT "/P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " velocity, %" PetscInt_FMT " pressure\n", nc, prob->velocityDegree, prob->pressureDegree, Nu, N));
   PetscCall(PetscViewerASCIIPrintf(viewer, "effects:"));
   if (!prob->effects) PetscCall(PetscViewerASCIIPrintf(viewer, " none (steady Stokes: no differential unknowns)"));
-  for (PetscInt e = 0; e < 3; ++e)
+  for (PetscInt e = 0; e < 4; ++e)
     if (prob->effects & (1 << e)) PetscCall(PetscViewerASCIIPrintf(viewer, " %s", SlumpEffectNames[e]));
   if (prob->momentumSource) PetscCall(PetscViewerASCIIPrintf(viewer, " scene_source"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   if (prob->pressurePinned) PetscCall(PetscViewerASCIIPrintf(viewer, "enclosed flow: pressure fixed at one vertex\n"));
+  if (prob->extraField >= 0) {
+    IS       isx;
+    PetscInt Nx;
+    PetscCall(SlumpProblemGetExtraFieldIS(prob, &isx));
+    PetscCall(ISGetSize(isx, &Nx));
+    PetscCall(ISDestroy(&isx));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s unknowns: %" PetscInt_FMT "\n", prob->extraOps.name ? prob->extraOps.name : "extra field", Nx));
+    if (prob->extraOps.view) PetscCall(prob->extraOps.view(prob->extraCtx, prob, viewer));
+  }
   PetscCall(SlumpRheologyView(prob->rheo, viewer));
   PetscFunctionReturn(0);
 }
@@ -630,7 +740,9 @@ PetscErrorCode SlumpProblemGetFieldIS(SlumpProblem prob, IS *isu, IS *isp)
   PetscFunctionBeginUser;
   PetscCall(DMCreateFieldIS(prob->dm, &nf, NULL, &is));
   *isu = is[0];
-  *isp = nf > 1 ? is[1] : NULL;
+  *isp = prob->formulation == SLUMP_FORMULATION_PLANE ? is[1] : NULL;
+  for (PetscInt f = 1; f < nf; ++f)
+    if (is[f] != *isp) PetscCall(ISDestroy(&is[f]));
   PetscCall(PetscFree(is));
   PetscFunctionReturn(0);
 }
@@ -649,15 +761,32 @@ PetscErrorCode SlumpProblemGetDifferentialMarker(SlumpProblem prob, Vec id)
     PetscCall(ISDestroy(&isu));
     PetscCall(ISDestroy(&isp));
   }
+  if (prob->extraField >= 0) {
+    IS  isx;
+    Vec sub;
+    PetscCall(SlumpProblemGetExtraFieldIS(prob, &isx));
+    PetscCall(VecGetSubVector(id, isx, &sub));
+    PetscCall(VecSet(sub, 1.0));
+    PetscCall(VecRestoreSubVector(id, isx, &sub));
+    PetscCall(ISDestroy(&isx));
+  }
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SlumpProblemProjectInitialState(SlumpProblem prob, PetscReal t, Vec X)
 {
-  SlumpPointFn funcs[2] = {prob->u0 ? prob->u0 : ZeroFn, prob->p0 ? prob->p0 : ZeroFn};
+  SlumpPointFn funcs[3] = {prob->u0 ? prob->u0 : ZeroFn, prob->p0 ? prob->p0 : ZeroFn, ZeroFn};
   /* anti-plane: one field; DMProjectFunction reads funcs[0] only */
-  void        *ctxs[2]  = {prob->u0ctx, prob->p0ctx};
+  void        *ctxs[3]  = {prob->u0ctx, prob->p0ctx, NULL};
   PetscFunctionBeginUser;
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
+    funcs[0] = prob->uPresc;
+    ctxs[0]  = prob->uPrescCtx;
+  }
+  if (prob->extraField >= 0) {
+    funcs[prob->extraField] = prob->extraOps.init ? prob->extraOps.init : ZeroFn;
+    ctxs[prob->extraField]  = prob->extraCtx;
+  }
   PetscCall(DMProjectFunction(prob->dm, t, funcs, ctxs, INSERT_ALL_VALUES, X));
   PetscFunctionReturn(0);
 }

@@ -35,7 +35,8 @@ PETSC_EXTERN PetscErrorCode SlumpMeshGetMinEdgeLength(DM dm, PetscReal *hmin);
 typedef enum {
   SLUMP_EFFECT_INERTIA    = 1 << 0, /* rho du/dt                          */
   SLUMP_EFFECT_CONVECTION = 1 << 1, /* rho u . grad u (needs inertia)     */
-  SLUMP_EFFECT_BODY_FORCE = 1 << 2  /* rho g, or an imposed pressure gradient */
+  SLUMP_EFFECT_BODY_FORCE = 1 << 2, /* rho g, or an imposed pressure gradient */
+  SLUMP_EFFECT_FREE_SURFACE = 1 << 3 /* a level set phi in the state (interface/) */
 } SlumpEffect;
 PETSC_EXTERN const char *const SlumpEffectNames[];
 
@@ -55,15 +56,41 @@ enum {
   SLUMP_C_SCENE   = 4, /* four values a scene's own kernels may use       */
   SLUMP_C_RHEO    = 8, /* first rheology parameter                       */
   SLUMP_C_RHEO_MAX = 16,
-  SLUMP_C_NUM     = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX
+  SLUMP_C_FIELD   = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX, /* eight values of the extra field (level set) */
+  SLUMP_C_FIELD_MAX = 8,
+  SLUMP_C_NUM     = SLUMP_C_FIELD + SLUMP_C_FIELD_MAX
 };
+#define SLUMP_MAX_FIELDS 3
 
 /* ----------------------------------------------------------- formulation */
 /* plane: velocity u (P2, dim components) and pressure p (P1);
    antiplane: one out-of-plane velocity w(x, y) (P2), u = (0, 0, w), with
    ||gdot|| = |grad w| and no pressure (ducts: the Mosolov problem). The body
    force's x component drives w. */
-typedef enum { SLUMP_FORMULATION_PLANE, SLUMP_FORMULATION_ANTIPLANE } SlumpFormulation;
+/* transport: the velocity is prescribed everywhere (SlumpProblemSetPrescribedVelocity)
+   and is not an unknown; only the extra field (a level set) is solved for. */
+typedef enum { SLUMP_FORMULATION_PLANE, SLUMP_FORMULATION_ANTIPLANE, SLUMP_FORMULATION_TRANSPORT } SlumpFormulation;
+
+/* An extra scalar field carried in the state after velocity and pressure:
+   the level set of interface/. Core knows it only through these callbacks
+   (core does not include interface/). */
+typedef struct {
+  /* create the field's PetscFE (DMSetField at index `field`) */
+  PetscErrorCode (*create_field)(void *ctx, SlumpProblem prob, DM dm, PetscInt field);
+  /* register its residual and Jacobian kernels (and may replace the momentum
+     ones, e.g. two-phase mixing) */
+  PetscErrorCode (*set_pointwise)(void *ctx, SlumpProblem prob, PetscDS ds, PetscInt field);
+  /* its values into the kernels' constants[SLUMP_C_FIELD ...] */
+  PetscErrorCode (*set_constants)(void *ctx, SlumpProblem prob, PetscScalar constants[]);
+  /* initial values */
+  SlumpPointFn init;
+  /* action between two accepted steps (reinitialisation); *changed tells the
+     integrator to restart from the modified state */
+  PetscErrorCode (*post_step)(void *ctx, SlumpProblem prob, PetscInt step, PetscReal t, Vec X, PetscBool *changed);
+  PetscErrorCode (*view)(void *ctx, SlumpProblem prob, PetscViewer viewer);
+  PetscErrorCode (*destroy)(void *ctx);
+  const char *name;
+} SlumpExtraFieldOps;
 
 /* --------------------------------------------------------------- problem */
 PETSC_EXTERN PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob);
@@ -88,6 +115,24 @@ PETSC_EXTERN PetscErrorCode SlumpProblemSetMomentumSource(SlumpProblem prob, Pet
 /* Scene constant i (0..3), read by a scene's kernels as constants[SLUMP_C_SCENE + i]. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetSceneConstant(SlumpProblem prob, PetscInt i, PetscReal value);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetInitialVelocity(SlumpProblem prob, SlumpPointFn u0, void *ctx);
+/* Transport formulation: the velocity u(t, x) everywhere (u_t: its time
+   derivative, NULL if steady). */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetPrescribedVelocity(SlumpProblem prob, SlumpPointFn u, SlumpPointFn u_t, void *ctx);
+/* Attach the extra field (before SlumpProblemSetUp); the problem owns ctx
+   and calls ops->destroy. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetExtraField(SlumpProblem prob, const SlumpExtraFieldOps *ops, void *ctx);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetExtraField(SlumpProblem prob, PetscInt *field, void **ctx);
+/* Index set of the extra field's unknowns (NULL if none). */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetExtraFieldIS(SlumpProblem prob, IS *is);
+/* Call the extra field's between-step action (collective). */
+PETSC_EXTERN PetscErrorCode SlumpProblemPostStep(SlumpProblem prob, PetscInt step, PetscReal t, Vec X, PetscBool *changed);
+/* Local solution at t with boundary values (read only; valid until the next call). */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetLocalSolution(SlumpProblem prob, PetscReal t, Vec X, Vec *locX);
+/* Local indices of a field's dofs in the closure of every local cell
+   (ncell x nb, row-major; PetscFree(idx) afterwards); cStart: first cell. */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetFieldClosure(SlumpProblem prob, PetscInt field, PetscInt *ncell, PetscInt *nb, PetscInt **idx, PetscInt *cStart);
+/* Integrals over the domain of n pointwise functions (one value each) at (t, X). */
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeIntegrals(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Initial pressure (initial guess of steady solves; e.g. lithostatic). */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetInitialPressure(SlumpProblem prob, SlumpPointFn p0, void *ctx);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetExactSolution(SlumpProblem prob, SlumpPointFn u, SlumpPointFn p, void *ctx);

@@ -51,6 +51,13 @@ struct _n_SlumpProblem {
   PetscInt      nbcIdx, *bcIdx;
   PetscScalar  *bcVal;
   PetscBool     petscAssembly; /* -assembly petsc: PETSc's DMPlexTSCompute*FEM */
+  /* transport formulation: prescribed velocity */
+  SlumpPointFn  uPresc, uPresc_t;
+  void         *uPrescCtx;
+  /* extra field (level set): index, callbacks, context */
+  PetscInt      extraField;
+  SlumpExtraFieldOps extraOps;
+  void         *extraCtx;
 };
 
 PETSC_INTERN PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem);
@@ -59,7 +66,7 @@ PETSC_INTERN PetscErrorCode SlumpAssemblyCreate(SlumpProblem);
 PETSC_INTERN PetscErrorCode SlumpAssemblyDestroy(SlumpAssembly *);
 PETSC_INTERN PetscErrorCode SlumpAssembleResidual(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, Vec locF);
 PETSC_INTERN PetscErrorCode SlumpAssembleJacobian(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat J);
-PETSC_INTERN PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscPointJac g[2][2][4], Mat J);
+PETSC_INTERN PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscPointJac g[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4], Mat J);
 PETSC_INTERN PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem, Vec locX, const char label[], PetscInt comp, PetscReal *integral, PetscReal *length);
 PETSC_INTERN PetscErrorCode SlumpAssembleIntegrals(SlumpProblem, PetscReal t, Vec locX, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Fill prob->locX with X and the boundary values at t. */

@@ -50,7 +50,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     PetscBool       conv;
     PetscInt        nits, lits;
     PetscCall(VecCopy(X, Yn));
-    if (n == 0) {
+    if (n == 0 || !have_prev) {
       alpha = 1.0 / dt;
       PetscCall(VecAXPBY(beta, -1.0 / dt, 0.0, Yn));
     } else {
@@ -60,7 +60,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     PetscCall(SlumpImplicitSolverSolve(s, tn1, alpha, beta, X, &conv, &nits, &lits));
     PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g; reduce -time_dt", (double)tn1);
     {
-      SlumpStepRecord r = {tn1, dt, n == 0 ? 1 : 2, nits, lits, 0, 0, X};
+      SlumpStepRecord r = {tn1, dt, (n == 0 || !have_prev) ? 1 : 2, nits, lits, 0, 0, X};
       ti->stats.steps++;
       ti->stats.h_min = dt;
       ti->stats.h_max = dt;
@@ -110,6 +110,15 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     PetscCall(VecCopy(Yn, Yprev));
     have_prev = PETSC_TRUE;
     if (stop) break;
+    {
+      /* between steps (level-set reinitialisation): restart with BDF1 */
+      PetscBool changed;
+      PetscCall(SlumpProblemPostStep(ti->prob, ti->stats.steps, tn1, X, &changed));
+      if (changed) {
+        have_prev = PETSC_FALSE;
+        ti->stats.restarts++;
+      }
+    }
   }
   {
     SlumpStats st;

@@ -141,7 +141,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   PetscReal       next_out;
   PetscInt        kout = 1;
   long int        nni_prev = 0, netf_prev = 0, ncfn_prev = 0;
-  PetscInt        nli_prev = 0;
+  PetscInt        nli_prev = 0, nni_tot = 0, netf_tot = 0, ncfn_tot = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
   PetscCheck(!SUNContext_Create((void *)&comm, &ctx), comm, PETSC_ERR_LIB, "SUNContext_Create failed");
@@ -265,6 +265,9 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       r.lin_its        = nli - nli_prev;
       r.err_test_fails = (PetscInt)(netf - netf_prev);
       r.conv_fails     = (PetscInt)(ncfn - ncfn_prev);
+      nni_tot += r.newton_its;
+      netf_tot += r.err_test_fails;
+      ncfn_tot += r.conv_fails;
       r.X              = X;
       nni_prev         = nni;
       netf_prev        = netf;
@@ -273,11 +276,12 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       ti->h_last       = h;
       ti->order_last   = q;
       ti->stats.steps++;
-      ti->stats.newton_its     = (PetscInt)nni;
+      /* IDA's counters restart with IDAReInit: totals are accumulated here */
+      ti->stats.newton_its     = nni_tot;
       ti->stats.lin_its        = nli;
       ti->stats.lin_solves     = nsolves;
-      ti->stats.err_test_fails = (PetscInt)netf;
-      ti->stats.conv_fails     = (PetscInt)ncfn;
+      ti->stats.err_test_fails = netf_tot;
+      ti->stats.conv_fails     = ncfn_tot;
       ti->stats.h_min          = PetscMin(ti->stats.h_min, h);
       ti->stats.h_max          = PetscMax(ti->stats.h_max, h);
       if (ti->stepmon) PetscCall(ti->stepmon(ti, &r, ti->stepctx));
@@ -292,6 +296,18 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       next_out = ti->t0 + (++kout) * ti->dtout;
     }
     if (tret >= ti->tfinal * (1 - 1e-14)) break;
+    {
+      /* between steps (level-set reinitialisation): if the state changed,
+         restart IDA from it at order 1 with the last step size */
+      PetscBool changed;
+      PetscCall(SlumpProblemPostStep(ti->prob, ti->stats.steps, tret, X, &changed));
+      if (changed) {
+        IDACHECK(IDAReInit(mem, tret, yy, yp));
+        IDACHECK(IDASetInitStep(mem, ti->h_last));
+        ti->stats.restarts++;
+        nni_prev = netf_prev = ncfn_prev = 0;
+      }
+    }
   }
   IDAFree(&mem);
   if (NLS) SUNNonlinSolFree(NLS);

@@ -300,7 +300,7 @@ PetscErrorCode SlumpIntegratorSolve(SlumpIntegrator ti, Vec X)
   PetscInt effects;
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemGetEffects(ti->prob, &effects));
-  PetscCheck(effects & SLUMP_EFFECT_INERTIA, PetscObjectComm((PetscObject)X), PETSC_ERR_USER_INPUT, "Time integration needs the inertia effect; a scene without inertia is solved as a steady state");
+  PetscCheck(effects & (SLUMP_EFFECT_INERTIA | SLUMP_EFFECT_FREE_SURFACE), PetscObjectComm((PetscObject)X), PETSC_ERR_USER_INPUT, "Time integration needs the inertia or free-surface effect (a differential unknown); a scene without either is solved as a steady state");
   ti->t = ti->t0;
   if (ti->type == SLUMP_INTEGRATOR_IDA) PetscCall(SlumpIntegratorSolve_IDA(ti, X));
   else PetscCall(SlumpIntegratorSolve_BDF2(ti, X));

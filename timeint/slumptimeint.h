@@ -21,6 +21,7 @@ PETSC_EXTERN const char *const SlumpIntegratorTypes[];
 typedef struct {
   PetscInt  steps, res_evals, jac_evals, newton_its, lin_its, lin_solves;
   PetscInt  err_test_fails, conv_fails;
+  PetscInt  restarts; /* restarts after a between-step change of the state (reinitialisation) */
   PetscReal h_min, h_max;
 } SlumpStats;
 

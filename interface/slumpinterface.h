@@ -1,0 +1,72 @@
+/* slump interface: the material/ambient interface as the zero contour of a
+ * level set phi (negative in the material, positive in the ambient fluid),
+ * carried in the DAE state as an extra field and transported by the flow
+ * with SUPG stabilisation.
+ *
+ * Reinitialisation is a registry of methods, each with two hooks:
+ *   - a contribution to the level-set residual (its pointwise kernels), and
+ *   - an action between accepted steps, after which the integrator restarts
+ *     from the modified state (IDAReInit at order 1).
+ * Registered: none, convective (Riber's thesis eq. 2.16: transport and
+ * redistancing coupled in one residual, on the filtered E tanh(phi/E)),
+ * redistance (geometric: signed distance to the reconstructed zero contour)
+ * and hamilton_jacobi (pseudo-time iterations of phi_tau + s(phi0)(|grad phi| - 1) = 0
+ * with a monotone upwind scheme).
+ *
+ * Options (all under -levelset_ and -reinit_):
+ *   -levelset_degree 1|2          P1 or P2 level set (default 2)
+ *   -levelset_supg <f>            SUPG factor (0: Galerkin; default 1)
+ *   -reinit <name>                method (default: the scene's)
+ *   -reinit_every <n>             between-step action every n steps (default 20)
+ *   -reinit_convective_lambda <v> redistancing speed lambda (default 1)
+ *   -reinit_convective_width <w>  filter width E in cells (default 2)
+ *   -reinit_hj_iterations <n>     pseudo-time iterations (default 30)
+ *   -reinit_hj_cfl <c>            pseudo-time step over the local mesh size (default 0.8) */
+#pragma once
+
+#include "slump.h"
+
+typedef struct _n_SlumpLevelSet *SlumpLevelSet;
+
+/* A reinitialisation method. */
+typedef struct {
+  /* residual hook: register the level-set kernels of field `field` (NULL: plain SUPG transport) */
+  PetscErrorCode (*set_pointwise)(SlumpLevelSet ls, PetscDS ds, PetscInt field);
+  /* between-step hook (NULL: none); *changed if X was modified */
+  PetscErrorCode (*apply)(SlumpLevelSet ls, SlumpProblem prob, PetscReal t, Vec X, PetscBool *changed);
+  /* the state holds the filtered E tanh(d/E) instead of the distance d */
+  PetscBool filtered;
+} SlumpReinitOps;
+
+PETSC_EXTERN PetscErrorCode SlumpReinitRegister(const char name[], const char description[], const SlumpReinitOps *ops);
+PETSC_EXTERN PetscErrorCode SlumpReinitRegisterAll(void);
+
+/* Create the level set and attach it to prob as its extra field (before
+   SlumpProblemSetUp). phi0: signed distance, negative in the material. The
+   problem owns the object. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetCreate(SlumpProblem prob, SlumpPointFn phi0, void *ctx, SlumpLevelSet *ls);
+/* The level set of a problem (NULL if it has none). */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetLevelSet(SlumpProblem prob, SlumpLevelSet *ls);
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetReinitType(SlumpLevelSet ls, const char name[]);
+PETSC_EXTERN PetscErrorCode SlumpLevelSetGetReinitType(SlumpLevelSet ls, const char **name);
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls);
+/* Interface record, one row per accepted step: t, material volume, drift,
+   reinitialisations so far (rank 0 writes; NULL closes). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetLog(SlumpLevelSet ls, const char path[]);
+/* Record the volume at (t, X) (the first call sets the reference volume);
+   called after every accepted step, and by the driver at the initial time. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetRecordVolume(SlumpLevelSet ls, PetscReal t, Vec X);
+
+/* Material volume (area in 2D) of {phi < 0}, exact for the piecewise linear
+   interpolant of the nodal values (collective). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeVolume(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal *volume);
+/* | |grad d| - 1 | over the band of cells within `band` cells of the zero
+   contour (d: the distance, recovered from the filtered state if need be):
+   area-weighted mean and maximum (collective). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeGradientDeviation(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal band, PetscReal *mean, PetscReal *max);
+/* Apply the between-step action now (whatever -reinit_every says). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetReinitialise(SlumpLevelSet ls, PetscReal t, Vec X, PetscBool *changed);
+/* Volumes: initial, current; number of between-step actions applied. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetGetStats(SlumpLevelSet ls, PetscReal *volume0, PetscReal *volume, PetscReal *max_drift, PetscInt *nreinit);
+/* Smallest edge length used by the stabilisation and the widths. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetGetMeshSize(SlumpLevelSet ls, PetscReal *h);
