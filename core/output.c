@@ -1,4 +1,4 @@
-/* Fields for ParaView: velocity, pressure, shear rate and effective viscosity
+/* Fields for ParaView: velocity, pressure, shear rate, effective viscosity and the level set
  * interpolated to P1, written with PETSc's HDF5 viewer (parallel HDF5) into
  * fields.h5, and an XDMF file fields.xmf that indexes every time written. */
 #include "slumpimpl.h"
@@ -9,8 +9,8 @@
 
 struct _n_SlumpFieldWriter {
   SlumpProblem prob;
-  PetscInt     nf, nc[4];
-  const char  *names[4];
+  PetscInt     nf, nc[5];
+  const char  *names[5];
   DM           dmOut;
   Vec          Xout;
   char         dir[PETSC_MAX_PATH_LEN];
@@ -53,6 +53,12 @@ static void CopyPressure(SLUMP_PW_ARGS, PetscScalar f[])
   f[0] = u[uOff[1]];
 }
 
+/* the extra field (level set) is the last one */
+static void CopyLevelSet(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  f[0] = u[uOff[Nf - 1]];
+}
+
 PetscErrorCode SlumpFieldWriterCreate(SlumpProblem prob, const char dir[], SlumpFieldWriter *writer)
 {
   SlumpFieldWriter w;
@@ -62,7 +68,13 @@ PetscErrorCode SlumpFieldWriterCreate(SlumpProblem prob, const char dir[], Slump
   w->prob = prob;
   PetscCall(PetscStrncpy(w->dir, dir, sizeof(w->dir)));
   PetscCall(DMGetDimension(prob->dm, &dim));
-  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
+    w->nf       = 2;
+    w->names[0] = "velocity";
+    w->names[1] = "levelset";
+    w->nc[0]    = dim;
+    w->nc[1]    = 1;
+  } else if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
     w->nf       = 3;
     w->names[0] = "velocity";
     w->names[1] = "shear_rate";
@@ -76,6 +88,11 @@ PetscErrorCode SlumpFieldWriterCreate(SlumpProblem prob, const char dir[], Slump
     w->names[3] = "viscosity";
     w->nc[0]    = dim;
     w->nc[1] = w->nc[2] = w->nc[3] = 1;
+    if (prob->extraField >= 0) {
+      w->nf       = 5;
+      w->names[4] = "levelset";
+      w->nc[4]    = 1;
+    }
   }
   PetscCall(DMClone(prob->dm, &w->dmOut));
   for (PetscInt f = 0; f < w->nf; ++f) {
@@ -151,13 +168,16 @@ PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
 {
   SlumpProblem           prob = w->prob;
   SlumpRheologyPointwise pw;
-  PetscPointFunc         funcs[4];
+  PetscPointFunc         funcs[5];
   PetscDS                ds;
   PetscViewer            v;
   char                   path[PETSC_MAX_PATH_LEN];
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
-  if (w->nf == 3) {
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
+    funcs[0] = CopyVelocity;
+    funcs[1] = CopyLevelSet;
+  } else if (w->nf == 3) {
     funcs[0] = CopyVelocity;
     funcs[1] = pw.shear_rate;
     funcs[2] = pw.eta;
@@ -166,6 +186,7 @@ PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
     funcs[1] = CopyPressure;
     funcs[2] = pw.shear_rate;
     funcs[3] = pw.eta;
+    funcs[4] = CopyLevelSet;
   }
   PetscCall(DMGetDS(w->dmOut, &ds));
   PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
