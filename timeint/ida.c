@@ -295,7 +295,6 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       if (ti->outmon) PetscCall(ti->outmon(ti, tout, Y, ti->outctx));
       next_out = ti->t0 + (++kout) * ti->dtout;
     }
-    if (tret >= ti->tfinal * (1 - 1e-14)) break;
     {
       /* between steps (level-set reinitialisation): if the state changed,
          restart IDA from it at order 1 with the last step size */
@@ -308,6 +307,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
         nni_prev = netf_prev = ncfn_prev = 0;
       }
     }
+    if (tret >= ti->tfinal * (1 - 1e-14)) break;
   }
   IDAFree(&mem);
   if (NLS) SUNNonlinSolFree(NLS);
