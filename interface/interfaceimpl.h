@@ -17,6 +17,7 @@ enum {
    (each P2 cell split into four P1 sub-triangles). */
 typedef struct {
   PetscInt   nnode, ntri;
+  PetscInt   nloc, nglob; /* sizes of the DM's local and global vectors */
   PetscInt  *lidx;      /* node -> local vector index               */
   PetscReal *xy;        /* node coordinates (2 per node)            */
   PetscInt  *tri;       /* 3 nodes per sub-triangle                 */

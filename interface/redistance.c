@@ -74,6 +74,13 @@ PetscErrorCode SlumpLSNodesGet(SlumpLevelSet ls, SlumpLSNodes **out)
   PetscCall(PetscMalloc1(nloc, &map));
   for (PetscInt i = 0; i < nloc; ++i) map[i] = -1;
   PetscCall(PetscNew(&nd));
+  nd->nloc  = nloc;
+  {
+    Vec g;
+    PetscCall(DMGetGlobalVector(dm, &g));
+    PetscCall(VecGetLocalSize(g, &nd->nglob));
+    PetscCall(DMRestoreGlobalVector(dm, &g));
+  }
   nd->nnode = 0;
   for (PetscInt k = 0; k < ncell * nb; ++k)
     if (map[cidx[k]] < 0) map[cidx[k]] = nd->nnode++;
@@ -285,7 +292,6 @@ static PetscErrorCode NodalMin(SlumpLevelSet ls, SlumpLSNodes *nd, PetscReal can
    |phi_i| / |grad phi_T|; PETSC_MAX_REAL if node i is in none. */
 static PetscErrorCode CutNodeDistances(SlumpLevelSet ls, SlumpLSNodes *nd, const PetscReal f[], PetscReal dist[])
 {
-  DM         dm;
   PetscReal *lwork, *gwork;
   PetscInt   nloc, nglob;
   PetscFunctionBeginUser;
@@ -301,16 +307,8 @@ static PetscErrorCode CutNodeDistances(SlumpLevelSet ls, SlumpLSNodes *nd, const
     if (gn <= 0) continue;
     for (PetscInt j = 0; j < 3; ++j) dist[v[j]] = PetscMin(dist[v[j]], PetscAbsReal(f[v[j]]) / gn);
   }
-  PetscCall(SlumpProblemGetDM(ls->prob, &dm));
-  {
-    Vec l, g;
-    PetscCall(DMGetLocalVector(dm, &l));
-    PetscCall(DMGetGlobalVector(dm, &g));
-    PetscCall(VecGetLocalSize(l, &nloc));
-    PetscCall(VecGetLocalSize(g, &nglob));
-    PetscCall(DMRestoreLocalVector(dm, &l));
-    PetscCall(DMRestoreGlobalVector(dm, &g));
-  }
+  nloc  = nd->nloc;
+  nglob = nd->nglob;
   PetscCall(PetscMalloc2(PetscMax(nloc, 1), &lwork, PetscMax(nglob, 1), &gwork));
   PetscCall(NodalMin(ls, nd, dist, lwork, gwork, nloc, nglob));
   PetscCall(PetscFree2(lwork, gwork));
@@ -413,15 +411,8 @@ PetscErrorCode SlumpReinitApply_HamiltonJacobi(SlumpLevelSet ls, SlumpProblem pr
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemGetDM(prob, &dm));
   PetscCall(GetNodal(ls, t, X, PETSC_FALSE, &nd, &f));
-  {
-    Vec l, g;
-    PetscCall(DMGetLocalVector(dm, &l));
-    PetscCall(DMGetGlobalVector(dm, &g));
-    PetscCall(VecGetLocalSize(l, &nloc));
-    PetscCall(VecGetLocalSize(g, &nglob));
-    PetscCall(DMRestoreLocalVector(dm, &l));
-    PetscCall(DMRestoreGlobalVector(dm, &g));
-  }
+  nloc  = nd->nloc;
+  nglob = nd->nglob;
   PetscCall(PetscMalloc5(PetscMax(nd->nnode, 1), &psi, PetscMax(nd->nnode, 1), &fixed, PetscMax(nd->nnode, 1), &U, PetscMax(nloc, 1), &lwork, PetscMax(nglob, 1), &gwork));
   /* nodes of cut sub-triangles: phi / |grad phi| of the triangle (smallest) */
   PetscCall(CutNodeDistances(ls, nd, f, fixed));
