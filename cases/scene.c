@@ -22,6 +22,8 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene, Slu
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DuctCessation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CavityCessation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_LevelSetRotation(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DamBreak(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_BinghamDamBreak(SlumpScene, SlumpProblem, MPI_Comm);
 
 PetscErrorCode SlumpSceneRegister(const char name[], const char description[], SlumpSceneCreateFn create)
 {
@@ -48,6 +50,8 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("vertical_chute", "mu(I) flow between rough vertical walls at uniform pressure; analytic profile and plug", SlumpSceneCreate_VerticalChute));
   PetscCall(SlumpSceneRegister("duct", "anti-plane Bingham flow in a square duct (Mosolov problem); flow threshold Bn_c = 1/(2 + sqrt(pi))", SlumpSceneCreate_Duct));
   PetscCall(SlumpSceneRegister("levelset_rotation", "circle or slotted disc in a rotating field (prescribed velocity): level-set transport and reinitialisation", SlumpSceneCreate_LevelSetRotation));
+  PetscCall(SlumpSceneRegister("dam_break", "Newtonian column collapse with air (two-phase, level set): box 0.42 x 0.44 m, column 0.114 m (Cruchaga et al.)", SlumpSceneCreate_DamBreak));
+  PetscCall(SlumpSceneRegister("bingham_dam_break", "Bingham column collapse with air (Liu et al., Riber's thesis): Re = 1e-3, Bn by -bn, to arrest", SlumpSceneCreate_BinghamDamBreak));
   PetscCall(SlumpSceneRegister("mms_stokes", "manufactured Stokes solution on the unit square (Dirichlet + traction); spatial orders", SlumpSceneCreate_MMSStokes));
   PetscFunctionReturn(0);
 }

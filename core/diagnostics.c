@@ -23,6 +23,37 @@ static void ShearRateSquared(SLUMP_PW_ARGS, PetscScalar f[])
   f[0] = g * g;
 }
 
+/* Two-phase: the material's share, weighted by its fraction m(phi). */
+static inline PetscReal Fraction(PetscInt Nf, const PetscInt uOff[], const PetscScalar u[], const PetscScalar constants[])
+{
+  PetscReal m, dm;
+  SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &m, &dm);
+  return m;
+}
+
+static void KineticEnergyTP(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  KineticEnergy(dim, Nf, NfAux, uOff, uOff_x, u, u_t, u_x, aOff, aOff_x, a, a_t, a_x, t, x, numConstants, constants, f);
+  f[0] *= Fraction(Nf, uOff, u, constants);
+}
+
+static void ShearRateTP(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  PetscReal p;
+  f[0] = Fraction(Nf, uOff, u, constants) * SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+}
+
+static void ShearRateSquaredTP(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  PetscReal p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+  f[0] = Fraction(Nf, uOff, u, constants) * g * g;
+}
+
+static void MaterialFraction(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  f[0] = Fraction(Nf, uOff, u, constants);
+}
+
 /* anti-plane flow rate: int w */
 static void OutOfPlaneVelocity(SLUMP_PW_ARGS, PetscScalar f[])
 {
@@ -38,7 +69,7 @@ static PetscErrorCode MaxShearRate(SlumpProblem prob, PetscReal *gmax)
 {
   DM             dmMax;
   Vec            v;
-  PetscPointFunc funcs[1] = {ShearRate};
+  PetscPointFunc funcs[1] = {prob->twoPhase ? ShearRateTP : ShearRate};
   PetscReal      m;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectQuery((PetscObject)prob->dmDiag, "slump_dg1", (PetscObject *)&dmMax));
@@ -92,32 +123,33 @@ static PetscErrorCode MaxShearRate(SlumpProblem prob, PetscReal *gmax)
 
 PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean)
 {
-  PetscPointFunc obj[1] = {ShearRate};
-  PetscReal      r;
+  SlumpDiagnosticKind k = SLUMP_DIAG_MEAN_SHEAR_RATE;
   PetscFunctionBeginUser;
-  PetscCall(SlumpProblemFillLocal(prob, t, X));
-  PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 1, obj, &r));
-  *mean = r / prob->area;
+  PetscCall(SlumpProblemComputeDiagnosticList(prob, t, X, 1, &k, mean));
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d)
 {
   SlumpRheologyPointwise pw;
-  PetscReal              r[5];
+  PetscReal              r[6], area = prob->area;
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
-  {
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  if (prob->twoPhase) {
+    PetscPointFunc obj[6] = {KineticEnergyTP, ShearRateTP, ShearRateSquaredTP, pw.tp_diss, pw.tp_yielded, MaterialFraction};
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 6, obj, r));
+    area = prob->materialArea = r[5];
+  } else {
     PetscPointFunc obj[5] = {KineticEnergy, ShearRate, ShearRateSquared, pw.diss_yield, pw.yielded};
-    PetscCall(SlumpProblemFillLocal(prob, t, X));
     PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 5, obj, r));
   }
   d->t                = t;
   d->kinetic_energy   = r[0];
-  d->mean_shear_rate  = r[1] / prob->area;
+  d->mean_shear_rate  = r[1] / area;
   d->l2_shear_rate    = PetscSqrtReal(r[2]);
   d->dissipation      = r[3];
-  d->yielded_fraction = r[4] / prob->area;
+  d->yielded_fraction = r[4] / area;
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
   PetscCall(MaxShearRate(prob, &d->max_shear_rate));
   d->flow_rate = 0.0;
@@ -181,9 +213,10 @@ const char *const SlumpDiagnosticNames[] = {"mean_shear_rate", "max_shear_rate",
 PetscErrorCode SlumpProblemComputeDiagnosticList(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, const SlumpDiagnosticKind kinds[], PetscReal values[])
 {
   SlumpRheologyPointwise pw;
-  PetscPointFunc         obj[SLUMP_DIAG_NUM];
-  PetscReal              r[SLUMP_DIAG_NUM];
+  PetscPointFunc         obj[SLUMP_DIAG_NUM + 1];
+  PetscReal              r[SLUMP_DIAG_NUM + 1], area = prob->area;
   PetscInt               slot[SLUMP_DIAG_NUM], nobj = 0;
+  const PetscBool        tp = prob->twoPhase;
   PetscBool              want[SLUMP_DIAG_NUM] = {PETSC_FALSE};
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
@@ -192,16 +225,20 @@ PetscErrorCode SlumpProblemComputeDiagnosticList(SlumpProblem prob, PetscReal t,
     slot[d] = -1;
     if (!want[d] || d == SLUMP_DIAG_MAX_SHEAR_RATE) continue;
     slot[d]     = nobj;
-    obj[nobj++] = d == SLUMP_DIAG_MEAN_SHEAR_RATE ? ShearRate : d == SLUMP_DIAG_L2_SHEAR_RATE ? ShearRateSquared : d == SLUMP_DIAG_KINETIC_ENERGY ? KineticEnergy : pw.yielded;
+    if (tp) obj[nobj++] = d == SLUMP_DIAG_MEAN_SHEAR_RATE ? ShearRateTP : d == SLUMP_DIAG_L2_SHEAR_RATE ? ShearRateSquaredTP : d == SLUMP_DIAG_KINETIC_ENERGY ? KineticEnergyTP : pw.tp_yielded;
+    else obj[nobj++] = d == SLUMP_DIAG_MEAN_SHEAR_RATE ? ShearRate : d == SLUMP_DIAG_L2_SHEAR_RATE ? ShearRateSquared : d == SLUMP_DIAG_KINETIC_ENERGY ? KineticEnergy : pw.yielded;
   }
+  /* two-phase: means over the material's area, measured in the same pass */
+  if (tp && nobj) obj[nobj++] = MaterialFraction;
   if (nobj) {
     PetscCall(SlumpProblemFillLocal(prob, t, X));
     PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, nobj, obj, r));
+    if (tp) area = prob->materialArea = r[nobj - 1];
   }
   for (PetscInt k = 0; k < n; ++k) {
     switch (kinds[k]) {
     case SLUMP_DIAG_MEAN_SHEAR_RATE:
-      values[k] = r[slot[kinds[k]]] / prob->area;
+      values[k] = r[slot[kinds[k]]] / area;
       break;
     case SLUMP_DIAG_L2_SHEAR_RATE:
       values[k] = PetscSqrtReal(r[slot[kinds[k]]]);
@@ -210,7 +247,7 @@ PetscErrorCode SlumpProblemComputeDiagnosticList(SlumpProblem prob, PetscReal t,
       values[k] = r[slot[kinds[k]]];
       break;
     case SLUMP_DIAG_YIELDED_FRACTION:
-      values[k] = r[slot[kinds[k]]] / prob->area;
+      values[k] = r[slot[kinds[k]]] / area;
       break;
     case SLUMP_DIAG_MAX_SHEAR_RATE:
       PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));

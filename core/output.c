@@ -1,4 +1,5 @@
-/* Fields for ParaView: velocity, pressure, shear rate, effective viscosity and the level set
+/* Fields for ParaView: velocity, pressure, shear rate, effective viscosity, the level set
+ * and (two-phase) the yielded indicator
  * interpolated to P1, written with PETSc's HDF5 viewer (parallel HDF5) into
  * fields.h5, and an XDMF file fields.xmf that indexes every time written. */
 #include "slumpimpl.h"
@@ -9,8 +10,8 @@
 
 struct _n_SlumpFieldWriter {
   SlumpProblem prob;
-  PetscInt     nf, nc[5];
-  const char  *names[5];
+  PetscInt     nf, nc[6];
+  const char  *names[6];
   DM           dmOut;
   Vec          Xout;
   char         dir[PETSC_MAX_PATH_LEN];
@@ -93,6 +94,13 @@ PetscErrorCode SlumpFieldWriterCreate(SlumpProblem prob, const char dir[], Slump
       w->names[4] = "levelset";
       w->nc[4]    = 1;
     }
+    if (prob->twoPhase) {
+      /* material fraction where yielded: 1 in the yielded material, 0 in its
+         unyielded zones and in the ambient fluid */
+      w->nf       = 6;
+      w->names[5] = "yielded";
+      w->nc[5]    = 1;
+    }
   }
   PetscCall(DMClone(prob->dm, &w->dmOut));
   for (PetscInt f = 0; f < w->nf; ++f) {
@@ -168,7 +176,7 @@ PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
 {
   SlumpProblem           prob = w->prob;
   SlumpRheologyPointwise pw;
-  PetscPointFunc         funcs[5];
+  PetscPointFunc         funcs[6];
   PetscDS                ds;
   PetscViewer            v;
   char                   path[PETSC_MAX_PATH_LEN];
@@ -185,8 +193,9 @@ PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
     funcs[0] = CopyVelocity;
     funcs[1] = CopyPressure;
     funcs[2] = pw.shear_rate;
-    funcs[3] = pw.eta;
+    funcs[3] = prob->twoPhase ? pw.tp_eta : pw.eta;
     funcs[4] = CopyLevelSet;
+    funcs[5] = pw.tp_yielded;
   }
   PetscCall(DMGetDS(w->dmOut, &ds));
   PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));

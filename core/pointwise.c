@@ -7,9 +7,37 @@
  * nothing at the quadrature points (no branch, no assembly). */
 #include "slumpimpl.h"
 
-static inline void MomentumF0(PetscInt dim, const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool inertia, PetscBool convection, PetscBool body, PetscScalar f0[])
+/* Density at a point: the material's, or (two-phase) mixed with the ambient
+   fluid's by the level set phi, the last field; drho: d rho / d phi. */
+static inline PetscReal Density(PetscInt Nf, const PetscInt uOff[], const PetscScalar u[], const PetscScalar constants[], PetscBool twophase, PetscReal *drho)
 {
-  const PetscReal rho = PetscRealPart(constants[SLUMP_C_RHO]);
+  const PetscReal rm = PetscRealPart(constants[SLUMP_C_RHO]), ra = PetscRealPart(constants[SLUMP_C_MIX_RHO]);
+  PetscReal       m, dm;
+  if (!twophase) {
+    if (drho) *drho = 0.0;
+    return rm;
+  }
+  SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &m, &dm);
+  if (drho) *drho = dm * (rm - ra);
+  return m * rm + (1.0 - m) * ra;
+}
+
+/* the momentum equation's f0 per unit density: u_t + u . grad u - g */
+static inline void MomentumPerDensity(PetscInt dim, const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool inertia, PetscBool convection, PetscBool body, PetscScalar f0[])
+{
+  for (PetscInt c = 0; c < dim; ++c) {
+    PetscScalar v = 0.0;
+    if (inertia) v += u_t[c];
+    if (convection)
+      for (PetscInt d = 0; d < dim; ++d) v += u[d] * u_x[c * dim + d];
+    if (body) v -= constants[SLUMP_C_GX + c];
+    f0[c] = v;
+  }
+}
+
+static inline void MomentumF0(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool inertia, PetscBool convection, PetscBool body, PetscBool twophase, PetscScalar f0[])
+{
+  const PetscReal rho = Density(Nf, uOff, u, constants, twophase, NULL);
   for (PetscInt c = 0; c < dim; ++c) {
     PetscScalar v = 0.0;
     if (inertia) v += rho * u_t[c];
@@ -20,61 +48,122 @@ static inline void MomentumF0(PetscInt dim, const PetscScalar u[], const PetscSc
   }
 }
 
-#define MOMENTUM_F0(NAME, INERTIA, CONV, BODY) \
+#define MOMENTUM_F0(NAME, INERTIA, CONV, BODY, TP) \
   static void NAME(SLUMP_PW_ARGS, PetscScalar f0[]) \
   { \
-    MomentumF0(dim, u, u_t, u_x, constants, INERTIA, CONV, BODY, f0); \
+    MomentumF0(dim, Nf, uOff, u, u_t, u_x, constants, INERTIA, CONV, BODY, TP, f0); \
   }
-MOMENTUM_F0(f0_u_none, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_I, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_IC, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_B, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE)
-MOMENTUM_F0(f0_u_IB, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE)
-MOMENTUM_F0(f0_u_ICB, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE)
+MOMENTUM_F0(f0_u_none, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE)
+MOMENTUM_F0(f0_u_I, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE)
+MOMENTUM_F0(f0_u_IC, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE)
+MOMENTUM_F0(f0_u_B, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, PETSC_FALSE)
+MOMENTUM_F0(f0_u_IB, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, PETSC_FALSE)
+MOMENTUM_F0(f0_u_ICB, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE)
+MOMENTUM_F0(f0_u_none_tp, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE)
+MOMENTUM_F0(f0_u_I_tp, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE)
+MOMENTUM_F0(f0_u_IC_tp, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE)
+MOMENTUM_F0(f0_u_B_tp, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE)
+MOMENTUM_F0(f0_u_IB_tp, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE)
+MOMENTUM_F0(f0_u_ICB_tp, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE)
 
-PetscPointFunc SlumpPwSelectMomentumF0(PetscInt e)
+PetscPointFunc SlumpPwSelectMomentumF0(PetscInt e, PetscBool tp)
 {
   const PetscBool in = (e & SLUMP_EFFECT_INERTIA) ? PETSC_TRUE : PETSC_FALSE;
   const PetscBool cv = (e & SLUMP_EFFECT_CONVECTION) ? PETSC_TRUE : PETSC_FALSE;
   const PetscBool bf = (e & SLUMP_EFFECT_BODY_FORCE) ? PETSC_TRUE : PETSC_FALSE;
+  if (tp) {
+    if (in && cv) return bf ? f0_u_ICB_tp : f0_u_IC_tp;
+    if (in) return bf ? f0_u_IB_tp : f0_u_I_tp;
+    return bf ? f0_u_B_tp : f0_u_none_tp;
+  }
   if (in && cv) return bf ? f0_u_ICB : f0_u_IC;
   if (in) return bf ? f0_u_IB : f0_u_I;
   return bf ? f0_u_B : f0_u_none;
 }
 
-/* d f0_u / d u = rho shift I + rho grad u (convection). */
-static void g0_uu_I(SLUMP_PWJ_ARGS, PetscScalar g0[])
+/* Two-phase: d f0_u / d phi = (d rho / d phi) (u_t + u . grad u - g). */
+#define MOMENTUM_G0_PHI(NAME, INERTIA, CONV, BODY) \
+  static void NAME(SLUMP_PWJ_ARGS, PetscScalar g0[]) \
+  { \
+    PetscReal   drho; \
+    PetscScalar r[3]; \
+    (void)Density(Nf, uOff, u, constants, PETSC_TRUE, &drho); \
+    MomentumPerDensity(dim, u, u_t, u_x, constants, INERTIA, CONV, BODY, r); \
+    for (PetscInt c = 0; c < dim; ++c) g0[c] = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0 ? drho * r[c] : 0.0; \
+  }
+MOMENTUM_G0_PHI(g0_uphi_I, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE)
+MOMENTUM_G0_PHI(g0_uphi_IC, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE)
+MOMENTUM_G0_PHI(g0_uphi_B, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE)
+MOMENTUM_G0_PHI(g0_uphi_IB, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE)
+MOMENTUM_G0_PHI(g0_uphi_ICB, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE)
+
+PetscPointJac SlumpPwSelectG0Phi(PetscInt e)
 {
-  const PetscReal rho = PetscRealPart(constants[SLUMP_C_RHO]);
+  const PetscBool in = (e & SLUMP_EFFECT_INERTIA) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool cv = (e & SLUMP_EFFECT_CONVECTION) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscBool bf = (e & SLUMP_EFFECT_BODY_FORCE) ? PETSC_TRUE : PETSC_FALSE;
+  if (in && cv) return bf ? g0_uphi_ICB : g0_uphi_IC;
+  if (in) return bf ? g0_uphi_IB : g0_uphi_I;
+  return bf ? g0_uphi_B : NULL;
+}
+
+/* d f0_u / d u = rho shift I + rho grad u (convection). */
+static inline void G0uuI(PetscInt dim, PetscReal rho, PetscReal u_tShift, PetscScalar g0[])
+{
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt e = 0; e < dim; ++e) g0[c * dim + e] = (c == e) ? rho * u_tShift : 0.0;
 }
-static void g0_uu_IC(SLUMP_PWJ_ARGS, PetscScalar g0[])
+static inline void G0uuIC(PetscInt dim, PetscReal rho, PetscReal u_tShift, const PetscScalar u_x[], const PetscScalar constants[], PetscScalar g0[])
 {
-  const PetscReal rho  = PetscRealPart(constants[SLUMP_C_RHO]);
   const PetscBool full = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0;
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt e = 0; e < dim; ++e) g0[c * dim + e] = ((c == e) ? rho * u_tShift : 0.0) + (full ? rho * u_x[c * dim + e] : 0.0);
 }
 /* d f0_u[c] / d u_x[e,d] = rho u_d delta_ce. */
-static void g1_uu_C(SLUMP_PWJ_ARGS, PetscScalar g1[])
+static inline void G1uuC(PetscInt dim, PetscReal rho, const PetscScalar u[], const PetscScalar constants[], PetscScalar g1[])
 {
-  const PetscReal rho  = PetscRealPart(constants[SLUMP_C_RHO]);
   const PetscBool full = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0;
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt e = 0; e < dim; ++e)
       for (PetscInt d = 0; d < dim; ++d) g1[(c * dim + e) * dim + d] = (c == e && full) ? rho * u[d] : 0.0;
 }
+#define RHO_(TP) Density(Nf, uOff, u, constants, TP, NULL)
+static void g0_uu_I(SLUMP_PWJ_ARGS, PetscScalar g0[])
+{
+  G0uuI(dim, RHO_(PETSC_FALSE), u_tShift, g0);
+}
+static void g0_uu_IC(SLUMP_PWJ_ARGS, PetscScalar g0[])
+{
+  G0uuIC(dim, RHO_(PETSC_FALSE), u_tShift, u_x, constants, g0);
+}
+static void g1_uu_C(SLUMP_PWJ_ARGS, PetscScalar g1[])
+{
+  G1uuC(dim, RHO_(PETSC_FALSE), u, constants, g1);
+}
+static void g0_uu_I_tp(SLUMP_PWJ_ARGS, PetscScalar g0[])
+{
+  G0uuI(dim, RHO_(PETSC_TRUE), u_tShift, g0);
+}
+static void g0_uu_IC_tp(SLUMP_PWJ_ARGS, PetscScalar g0[])
+{
+  G0uuIC(dim, RHO_(PETSC_TRUE), u_tShift, u_x, constants, g0);
+}
+static void g1_uu_C_tp(SLUMP_PWJ_ARGS, PetscScalar g1[])
+{
+  G1uuC(dim, RHO_(PETSC_TRUE), u, constants, g1);
+}
 
-PetscPointJac SlumpPwSelectG0(PetscInt e)
+PetscPointJac SlumpPwSelectG0(PetscInt e, PetscBool tp)
 {
   if (!(e & SLUMP_EFFECT_INERTIA)) return NULL;
+  if (tp) return (e & SLUMP_EFFECT_CONVECTION) ? g0_uu_IC_tp : g0_uu_I_tp;
   return (e & SLUMP_EFFECT_CONVECTION) ? g0_uu_IC : g0_uu_I;
 }
 
-PetscPointJac SlumpPwSelectG1(PetscInt e)
+PetscPointJac SlumpPwSelectG1(PetscInt e, PetscBool tp)
 {
-  return (e & SLUMP_EFFECT_CONVECTION) ? g1_uu_C : NULL;
+  if (!(e & SLUMP_EFFECT_CONVECTION)) return NULL;
+  return tp ? g1_uu_C_tp : g1_uu_C;
 }
 
 void SlumpPwContinuityF0(SLUMP_PW_ARGS, PetscScalar f0[])

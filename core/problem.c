@@ -276,12 +276,43 @@ PetscErrorCode SlumpProblemSetFlowRateBoundary(SlumpProblem prob, const char lab
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemSetTwoPhase(SlumpProblem prob, PetscReal rho_ambient, PetscReal eta_ambient, PetscReal width)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!prob->setup, prob->comm, PETSC_ERR_ORDER, "Set the two-phase mixing before SlumpProblemSetUp()");
+  PetscCheck(rho_ambient > 0.0, prob->comm, PETSC_ERR_USER_INPUT, "-ambient_density must be positive; got %g", (double)rho_ambient);
+  PetscCheck(eta_ambient > 0.0, prob->comm, PETSC_ERR_USER_INPUT, "-ambient_viscosity must be positive; got %g", (double)eta_ambient);
+  PetscCheck(width > 0.0, prob->comm, PETSC_ERR_USER_INPUT, "-mixing_width must be positive (a number of mesh cells); got %g", (double)width);
+  prob->twoPhase   = PETSC_TRUE;
+  prob->rhoAmbient = rho_ambient;
+  prob->etaAmbient = eta_ambient;
+  prob->mixWidth   = width;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetTwoPhase(SlumpProblem prob, PetscBool *on, PetscReal *rho_ambient, PetscReal *eta_ambient, PetscReal *width)
+{
+  PetscFunctionBeginUser;
+  if (on) *on = prob->twoPhase;
+  if (rho_ambient) *rho_ambient = prob->rhoAmbient;
+  if (eta_ambient) *eta_ambient = prob->etaAmbient;
+  if (width) *width = prob->mixWidth;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob)
 {
   PetscReal rho = prob->rho;
   PetscFunctionBeginUser;
   PetscOptionsBegin(prob->comm, NULL, "Problem", "SlumpProblem");
   PetscCall(PetscOptionsReal("-density", "Density rho", "SlumpProblemSetDensity", rho, &rho, NULL));
+  if (prob->twoPhase) {
+    PetscReal ra = prob->rhoAmbient, ea = prob->etaAmbient, w = prob->mixWidth;
+    PetscCall(PetscOptionsReal("-ambient_density", "Density of the ambient fluid (two-phase)", "SlumpProblemSetTwoPhase", ra, &ra, NULL));
+    PetscCall(PetscOptionsReal("-ambient_viscosity", "Viscosity of the ambient fluid (two-phase)", "SlumpProblemSetTwoPhase", ea, &ea, NULL));
+    PetscCall(PetscOptionsReal("-mixing_width", "Half-width of the smoothed Heaviside, in mesh cells (two-phase)", "SlumpProblemSetTwoPhase", w, &w, NULL));
+    PetscCall(SlumpProblemSetTwoPhase(prob, ra, ea, w));
+  }
   PetscCall(PetscOptionsRangeInt("-velocity_degree", "Polynomial degree of the velocity", "", prob->velocityDegree, &prob->velocityDegree, NULL, 2, 4));
   {
     const char *kinds[] = {"slump", "petsc"};
@@ -484,12 +515,18 @@ PetscErrorCode SlumpProblemSetPointwise(SlumpProblem prob, PetscDS ds)
     PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectAntiPlaneG0(prob->effects), NULL, NULL, pw.ap_g3_uu));
     PetscFunctionReturn(0);
   }
-  PetscCall(PetscDSSetResidual(ds, 0, prob->momentumSource ? prob->momentumSource : SlumpPwSelectMomentumF0(prob->effects), pw.f1_u));
-  PetscCall(PetscDSSetResidual(ds, 1, SlumpPwContinuityF0, NULL));
-  PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectG0(prob->effects), SlumpPwSelectG1(prob->effects), NULL, pw.g3_uu));
-  PetscCall(PetscDSSetJacobian(ds, 0, 1, NULL, NULL, pw.g2_up, NULL));
-  PetscCall(PetscDSSetJacobian(ds, 1, 0, NULL, SlumpPwContinuityG1, NULL, NULL));
-  if (prob->extraField >= 0) PetscCall(prob->extraOps.set_pointwise(prob->extraCtx, prob, ds, prob->extraField));
+  {
+    const PetscBool tp = prob->twoPhase;
+    PetscCheck(!tp || !prob->momentumSource, prob->comm, PETSC_ERR_SUP, "A scene's own momentum source cannot be mixed by two-phase density");
+    PetscCall(PetscDSSetResidual(ds, 0, prob->momentumSource ? prob->momentumSource : SlumpPwSelectMomentumF0(prob->effects, tp), tp ? pw.tp_f1_u : pw.f1_u));
+    PetscCall(PetscDSSetResidual(ds, 1, SlumpPwContinuityF0, NULL));
+    PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectG0(prob->effects, tp), SlumpPwSelectG1(prob->effects, tp), NULL, tp ? pw.tp_g3_uu : pw.g3_uu));
+    PetscCall(PetscDSSetJacobian(ds, 0, 1, NULL, NULL, tp ? pw.tp_g2_up : pw.g2_up, NULL));
+    PetscCall(PetscDSSetJacobian(ds, 1, 0, NULL, SlumpPwContinuityG1, NULL, NULL));
+    if (prob->extraField >= 0) PetscCall(prob->extraOps.set_pointwise(prob->extraCtx, prob, ds, prob->extraField));
+    /* the momentum equation's dependence on phi through rho and eta */
+    if (tp) PetscCall(PetscDSSetJacobian(ds, 0, prob->extraField, SlumpPwSelectG0Phi(prob->effects), NULL, pw.tp_g2_uphi, NULL));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -540,6 +577,11 @@ PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
   for (PetscInt i = 0; i < 4; ++i) prob->constants[SLUMP_C_SCENE + i] = prob->sceneConst[i];
   PetscCall(SlumpRheologyGetConstants(prob->rheo, &n, &prob->constants[SLUMP_C_RHEO]));
   if (prob->extraOps.set_constants) PetscCall(prob->extraOps.set_constants(prob->extraCtx, prob, &prob->constants[SLUMP_C_FIELD]));
+  if (prob->twoPhase) {
+    prob->constants[SLUMP_C_MIX_RHO] = prob->rhoAmbient;
+    prob->constants[SLUMP_C_MIX_ETA] = prob->etaAmbient;
+    prob->constants[SLUMP_C_MIX_EPS] = prob->mixEps;
+  }
   PetscCall(DMGetDS(prob->dm, &ds));
   PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
   PetscCall(DMGetDS(prob->dmDiag, &ds));
@@ -567,6 +609,12 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
   PetscCheck(prob->dm, prob->comm, PETSC_ERR_ORDER, "Set a mesh before SlumpProblemSetUp()");
   if (prob->setup) PetscFunctionReturn(0);
   PetscCall(SlumpRheologyCheck(prob->rheo));
+  if (prob->twoPhase) {
+    PetscReal h;
+    PetscCheck(prob->extraField >= 0 && prob->formulation == SLUMP_FORMULATION_PLANE, prob->comm, PETSC_ERR_ORDER, "Two-phase mixing needs a level set (an extra field) and the plane formulation");
+    PetscCall(SlumpMeshGetMinEdgeLength(prob->dm, &h));
+    prob->mixEps = prob->mixWidth * h;
+  }
   PetscCall(DMClone(prob->dm, &prob->dmDiag));
   PetscCall(CreateFields(prob, prob->dm));
   PetscCall(CreateFields(prob, prob->dmDiag));

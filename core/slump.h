@@ -56,9 +56,12 @@ enum {
   SLUMP_C_SCENE   = 4, /* four values a scene's own kernels may use       */
   SLUMP_C_RHEO    = 8, /* first rheology parameter                       */
   SLUMP_C_RHEO_MAX = 16,
-  SLUMP_C_FIELD   = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX, /* eight values of the extra field (level set) */
-  SLUMP_C_FIELD_MAX = 8,
-  SLUMP_C_NUM     = SLUMP_C_FIELD + SLUMP_C_FIELD_MAX
+  SLUMP_C_FIELD   = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX, /* five values of the extra field (level set) */
+  SLUMP_C_FIELD_MAX = 5,
+  SLUMP_C_MIX_RHO = SLUMP_C_FIELD + SLUMP_C_FIELD_MAX, /* two-phase: ambient density          */
+  SLUMP_C_MIX_ETA = SLUMP_C_MIX_RHO + 1,               /* two-phase: ambient viscosity        */
+  SLUMP_C_MIX_EPS = SLUMP_C_MIX_RHO + 2,               /* two-phase: Heaviside half-width     */
+  SLUMP_C_NUM     = SLUMP_C_MIX_RHO + 3
 };
 #define SLUMP_MAX_FIELDS 3
 
@@ -118,6 +121,18 @@ PETSC_EXTERN PetscErrorCode SlumpProblemSetInitialVelocity(SlumpProblem prob, Sl
 /* Transport formulation: the velocity u(t, x) everywhere (u_t: its time
    derivative, NULL if steady). */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetPrescribedVelocity(SlumpProblem prob, SlumpPointFn u, SlumpPointFn u_t, void *ctx);
+/* Two-phase mixing (needs the extra field, a level set phi, negative in the
+   material): density and viscosity are mixed with the smoothed Heaviside
+   H(phi) = 0 (phi < -w), 1 (phi > w), (1 + phi/w + sin(pi phi/w)/pi)/2
+   between, the material fraction being 1 - H. The rheology acts in the
+   material, a Newtonian law of viscosity eta_ambient in the ambient fluid:
+     rho = (1-H) rho + H rho_ambient,   eta = (1-H) eta_model(gdot, p) + H eta_ambient.
+   width: the half-width w in units of the smallest mesh edge (e.g. 1.5).
+   Options -ambient_density, -ambient_viscosity, -mixing_width. The
+   diagnostics then measure the material: kinetic energy and dissipation of
+   the material, shear rates and yielded fraction averaged over its area. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetTwoPhase(SlumpProblem prob, PetscReal rho_ambient, PetscReal eta_ambient, PetscReal width);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetTwoPhase(SlumpProblem prob, PetscBool *on, PetscReal *rho_ambient, PetscReal *eta_ambient, PetscReal *width);
 /* Attach the extra field (before SlumpProblemSetUp); the problem owns ctx
    and calls ops->destroy. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetExtraField(SlumpProblem prob, const SlumpExtraFieldOps *ops, void *ctx);

@@ -58,6 +58,10 @@ struct _n_SlumpProblem {
   PetscInt      extraField;
   SlumpExtraFieldOps extraOps;
   void         *extraCtx;
+  /* two-phase mixing with the level set */
+  PetscBool     twoPhase;
+  PetscReal     rhoAmbient, etaAmbient, mixWidth, mixEps;
+  PetscReal     materialArea; /* of the last diagnostics pass */
 };
 
 PETSC_INTERN PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem);
@@ -76,9 +80,10 @@ PETSC_INTERN PetscErrorCode SlumpProblemFillDiagVector(SlumpProblem, PetscReal t
 PETSC_INTERN PetscErrorCode SlumpProblemSetPointwise(SlumpProblem, PetscDS ds);
 
 /* core pointwise (pointwise.c) */
-PETSC_INTERN PetscPointFunc SlumpPwSelectMomentumF0(PetscInt effects);
-PETSC_INTERN PetscPointJac  SlumpPwSelectG0(PetscInt effects);
-PETSC_INTERN PetscPointJac  SlumpPwSelectG1(PetscInt effects);
+PETSC_INTERN PetscPointFunc SlumpPwSelectMomentumF0(PetscInt effects, PetscBool twophase);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG0(PetscInt effects, PetscBool twophase);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG1(PetscInt effects, PetscBool twophase);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG0Phi(PetscInt effects);
 PETSC_INTERN PetscPointFunc SlumpPwSelectAntiPlaneF0(PetscInt effects);
 PETSC_INTERN PetscPointJac  SlumpPwSelectAntiPlaneG0(PetscInt effects);
 PETSC_INTERN void           SlumpPwContinuityF0(SLUMP_PW_ARGS, PetscScalar f0[]);

@@ -69,11 +69,41 @@ static inline void SlumpPwG3AntiPlane(PetscInt dim, const PetscScalar w_x[], con
     for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = r * w_x[d] * w_x[e] + (d == e ? eta : 0.0);
 }
 
-static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], SlumpViscosityKernel k, PetscScalar f1[])
+/* Two-phase mixing: the material fraction m = 1 - H(phi) of the smoothed
+   Heaviside of half-width w = constants[SLUMP_C_MIX_EPS] (phi < 0: material),
+   and dm/dphi. */
+static inline void SlumpPwMaterialFraction(PetscScalar phi, const PetscScalar constants[], PetscReal *m, PetscReal *dm)
+{
+  const PetscReal w = PetscRealPart(constants[SLUMP_C_MIX_EPS]), p = PetscRealPart(phi);
+  if (p <= -w) {
+    *m  = 1.0;
+    *dm = 0.0;
+  } else if (p >= w) {
+    *m  = 0.0;
+    *dm = 0.0;
+  } else {
+    *m  = 0.5 * (1.0 - p / w - PetscSinReal(PETSC_PI * p / w) / PETSC_PI);
+    *dm = -0.5 * (1.0 + PetscCosReal(PETSC_PI * p / w)) / w;
+  }
+}
+
+/* The viscosity at a point: the model's, mixed with the ambient fluid's
+   (m = 1, eta_a = 0: the model alone, bit for bit). eta_m: the model's own. */
+static inline void SlumpPwViscosity(SlumpViscosityKernel k, const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal m, PetscReal eta_a, PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty, PetscReal *eta_m)
+{
+  PetscReal e;
+  k(prm, g, p, x, &e, de_dg, de_dp, ty);
+  *eta_m = e;
+  *eta   = m * e + (1.0 - m) * eta_a;
+  *de_dg *= m;
+  *de_dp *= m;
+}
+
+static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscReal m, PetscReal eta_a, SlumpViscosityKernel k, PetscScalar f1[])
 {
   PetscScalar gd[9];
-  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty;
-  k(prm, g, PetscRealPart(p), x, &eta, &de_dg, &de_dp, &ty);
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty, em;
+  SlumpPwViscosity(k, prm, g, PetscRealPart(p), x, m, eta_a, &eta, &de_dg, &de_dp, &ty, &em);
   for (PetscInt c = 0; c < dim; ++c) {
     for (PetscInt d = 0; d < dim; ++d) f1[c * dim + d] = eta * gd[c * dim + d];
     f1[c * dim + c] -= p;
@@ -82,16 +112,16 @@ static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar 
 
 /* d f1[c,d] / d u_x[e,f] = eta (delta_ce delta_df + delta_de delta_cf) + eta' gd_cd gd_ef / ||gdot||.
    jacmode 1 (consistent initialisation) drops the viscous block. */
-static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g3[])
+static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscReal m, PetscReal eta_a, PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g3[])
 {
   PetscScalar gd[9];
-  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty;
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty, em;
   const PetscInt n = dim * dim;
   if (jacmode == 1) {
     for (PetscInt i = 0; i < n * n; ++i) g3[i] = 0.0;
     return;
   }
-  k(prm, g, PetscRealPart(p), x, &eta, &de_dg, &de_dp, &ty);
+  SlumpPwViscosity(k, prm, g, PetscRealPart(p), x, m, eta_a, &eta, &de_dg, &de_dp, &ty, &em);
   const PetscReal r = g > SLUMP_GDOT_TINY ? de_dg / g : 0.0;
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt d = 0; d < dim; ++d)
@@ -105,28 +135,49 @@ static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar 
 }
 
 /* d f1[c,d] / d p = -delta_cd + (d eta/dp) gd_cd. */
-static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g2[])
+static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscReal m, PetscReal eta_a, PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g2[])
 {
   PetscScalar gd[9];
-  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp = 0.0, ty;
-  if (jacmode != 1) k(prm, g, PetscRealPart(p), x, &eta, &de_dg, &de_dp, &ty);
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp = 0.0, ty, em;
+  if (jacmode != 1) SlumpPwViscosity(k, prm, g, PetscRealPart(p), x, m, eta_a, &eta, &de_dg, &de_dp, &ty, &em);
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = de_dp * gd[c * dim + d] - (c == d ? 1.0 : 0.0);
 }
 
-/* Every model file instantiates its pointwise set from its kernel. */
+/* Two-phase: d f1[c,d] / d phi = dm/dphi (eta_model - eta_ambient) gd_cd. */
+static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScalar p, PetscScalar phi, const PetscReal x[], const PetscScalar constants[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g2[])
+{
+  PetscScalar gd[9];
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty, m, dm;
+  for (PetscInt i = 0; i < dim * dim; ++i) g2[i] = 0.0;
+  if (jacmode == 1) return;
+  SlumpPwMaterialFraction(phi, constants, &m, &dm);
+  if (dm == 0.0) return;
+  k(&constants[SLUMP_C_RHEO], g, PetscRealPart(p), x, &eta, &de_dg, &de_dp, &ty);
+  for (PetscInt i = 0; i < dim * dim; ++i) g2[i] = dm * (eta - PetscRealPart(constants[SLUMP_C_MIX_ETA])) * gd[i];
+}
+
+/* Every model file instantiates its pointwise set from its kernel: the
+   single-phase set, and the two-phase set (tp_) that reads the level set
+   phi (the last field) and mixes with the ambient Newtonian fluid. */
+#define SLUMP_PW_JACMODE (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE])
+#define SLUMP_PW_MIX \
+  PetscReal m_, dm_; \
+  SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &m_, &dm_); \
+  const PetscReal ea_ = PetscRealPart(constants[SLUMP_C_MIX_ETA]); \
+  (void)ea_
 #define SLUMP_RHEOLOGY_DEFINE_POINTWISE(NAME, KERNEL) \
   static void NAME##_f1_u(SLUMP_PW_ARGS, PetscScalar f1[]) \
   { \
-    SlumpPwF1(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], KERNEL, f1); \
+    SlumpPwF1(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], 1.0, 0.0, KERNEL, f1); \
   } \
   static void NAME##_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
   { \
-    SlumpPwG3(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g3); \
+    SlumpPwG3(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], 1.0, 0.0, SLUMP_PW_JACMODE, KERNEL, g3); \
   } \
   static void NAME##_g2_up(SLUMP_PWJ_ARGS, PetscScalar g2[]) \
   { \
-    SlumpPwG2(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g2); \
+    SlumpPwG2(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], 1.0, 0.0, SLUMP_PW_JACMODE, KERNEL, g2); \
   } \
   static void NAME##_ap_f1_u(SLUMP_PW_ARGS, PetscScalar f1[]) \
   { \
@@ -134,7 +185,7 @@ static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar 
   } \
   static void NAME##_ap_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
   { \
-    SlumpPwG3AntiPlane(dim, u_x, x, &constants[SLUMP_C_RHEO], (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE]), KERNEL, g3); \
+    SlumpPwG3AntiPlane(dim, u_x, x, &constants[SLUMP_C_RHEO], SLUMP_PW_JACMODE, KERNEL, g3); \
   } \
   static void NAME##_eta(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
@@ -159,4 +210,45 @@ static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar 
     KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     f[0] = (eta * g > ty) ? 1.0 : 0.0; \
   } \
-  static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded, NAME##_ap_f1_u, NAME##_ap_g3_uu};
+  static void NAME##_tp_f1_u(SLUMP_PW_ARGS, PetscScalar f1[]) \
+  { \
+    SLUMP_PW_MIX; \
+    SlumpPwF1(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], m_, ea_, KERNEL, f1); \
+  } \
+  static void NAME##_tp_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
+  { \
+    SLUMP_PW_MIX; \
+    SlumpPwG3(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], m_, ea_, SLUMP_PW_JACMODE, KERNEL, g3); \
+  } \
+  static void NAME##_tp_g2_up(SLUMP_PWJ_ARGS, PetscScalar g2[]) \
+  { \
+    SLUMP_PW_MIX; \
+    SlumpPwG2(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], m_, ea_, SLUMP_PW_JACMODE, KERNEL, g2); \
+  } \
+  static void NAME##_tp_g2_uphi(SLUMP_PWJ_ARGS, PetscScalar g2[]) \
+  { \
+    SlumpPwG2Phi(dim, u_x, u[uOff[1]], u[uOff[Nf - 1]], x, constants, SLUMP_PW_JACMODE, KERNEL, g2); \
+  } \
+  static void NAME##_tp_eta(SLUMP_PW_ARGS, PetscScalar f[]) \
+  { \
+    SLUMP_PW_MIX; \
+    PetscReal eta, d1_, d2_, ty, em, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    SlumpPwViscosity(KERNEL, &constants[SLUMP_C_RHEO], g, p, x, m_, ea_, &eta, &d1_, &d2_, &ty, &em); \
+    f[0] = eta; \
+  } \
+  static void NAME##_tp_dissipation(SLUMP_PW_ARGS, PetscScalar f[]) \
+  { \
+    SLUMP_PW_MIX; \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
+    f[0] = m_ * eta * g * g; \
+  } \
+  static void NAME##_tp_yielded(SLUMP_PW_ARGS, PetscScalar f[]) \
+  { \
+    SLUMP_PW_MIX; \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
+    f[0] = (eta * g > ty) ? m_ : 0.0; \
+  } \
+  static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded, NAME##_ap_f1_u, NAME##_ap_g3_uu, \
+                                                          NAME##_tp_f1_u, NAME##_tp_g2_up, NAME##_tp_g3_uu, NAME##_tp_g2_uphi, NAME##_tp_eta, NAME##_tp_dissipation, NAME##_tp_yielded};

@@ -44,6 +44,10 @@ struct _n_SlumpLevelSet {
   PetscReal      volume0, volume, max_drift;
   PetscBool      have_volume0;
   FILE          *log;
+  PetscBool      volume_correction;
+  PetscReal      volume_shift; /* sum of the corrections' shifts of phi */
+  PetscInt       ngauge;
+  PetscReal      gauge[4];
 };
 
 PETSC_INTERN PetscErrorCode SlumpLSNodesGet(SlumpLevelSet ls, SlumpLSNodes **nodes);

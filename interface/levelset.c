@@ -333,10 +333,62 @@ PetscErrorCode SlumpLevelSetRecordVolume(SlumpLevelSet ls, PetscReal t, Vec X)
     ls->have_volume0 = PETSC_TRUE;
   }
   if (ls->volume0 > 0) ls->max_drift = PetscMax(ls->max_drift, PetscAbsReal(ls->volume / ls->volume0 - 1.0));
-  if (ls->log) {
-    PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "%.10g,%.12g,%.6e,%" PetscInt_FMT "\n", (double)t, (double)ls->volume, (double)(ls->volume0 > 0 ? ls->volume / ls->volume0 - 1.0 : 0.0), ls->nreinit));
-    fflush(ls->log);
+  {
+    PetscReal box[4], hg[4];
+    PetscBool found[4];
+    /* collective: every rank measures, rank 0 writes */
+    PetscCall(SlumpLevelSetComputeExtent(ls, t, X, box));
+    for (PetscInt g = 0; g < ls->ngauge; ++g) PetscCall(SlumpLevelSetComputeHeightAt(ls, t, X, ls->gauge[g], &hg[g], &found[g]));
+    if (ls->log) {
+      PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "%.10g,%.12g,%.6e,%" PetscInt_FMT ",%.8g,%.8g,%.8g", (double)t, (double)ls->volume, (double)(ls->volume0 > 0 ? ls->volume / ls->volume0 - 1.0 : 0.0), ls->nreinit, (double)box[0], (double)box[1], (double)box[3]));
+      for (PetscInt g = 0; g < ls->ngauge; ++g) {
+        if (found[g]) PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",%.8g", (double)hg[g]));
+        else PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",nan"));
+      }
+      PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "\n"));
+      fflush(ls->log);
+    }
   }
+  PetscFunctionReturn(0);
+}
+
+/* Global volume correction: phi <- phi - delta with delta such that the
+   material volume is back to its initial value (secant iterations on the
+   exact volume of the linear interpolant). */
+static PetscErrorCode CorrectVolume(SlumpLevelSet ls, PetscReal t, Vec X)
+{
+  IS              is;
+  const PetscInt *idx;
+  PetscInt        n, rStart;
+  PetscScalar    *x;
+  PetscReal       d0 = 0.0, d1, f0, f1, V, applied = 0.0;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetExtraFieldIS(ls->prob, &is));
+  PetscCall(ISGetLocalSize(is, &n));
+  PetscCall(ISGetIndices(is, &idx));
+  PetscCall(VecGetOwnershipRange(X, &rStart, NULL));
+  PetscCall(SlumpLevelSetComputeVolume(ls, t, X, &V));
+  f0 = V - ls->volume0;
+  d1 = 1e-3 * ls->h;
+  for (PetscInt it = 0; it < 20 && PetscAbsReal(f0) > 1e-12 * ls->volume0; ++it) {
+    /* shift by d1 (from the applied d0) and measure */
+    PetscCall(VecGetArray(X, &x));
+    for (PetscInt i = 0; i < n; ++i) x[idx[i] - rStart] -= d1 - applied;
+    PetscCall(VecRestoreArray(X, &x));
+    applied = d1;
+    PetscCall(SlumpLevelSetComputeVolume(ls, t, X, &V));
+    f1 = V - ls->volume0;
+    if (f1 == f0) break;
+    {
+      const PetscReal d2 = d1 - f1 * (d1 - d0) / (f1 - f0);
+      d0                 = d1;
+      f0                 = f1;
+      d1                 = d2;
+    }
+  }
+  PetscCall(ISRestoreIndices(is, &idx));
+  PetscCall(ISDestroy(&is));
+  ls->volume_shift += applied;
   PetscFunctionReturn(0);
 }
 
@@ -347,6 +399,7 @@ PetscErrorCode SlumpLevelSetReinitialise(SlumpLevelSet ls, PetscReal t, Vec X, P
   if (!ls->reinit.apply) PetscFunctionReturn(0);
   PetscCall(ls->reinit.apply(ls, ls->prob, t, X, changed));
   if (*changed) ls->nreinit++;
+  if (*changed && ls->volume_correction && ls->have_volume0) PetscCall(CorrectVolume(ls, t, X));
   PetscFunctionReturn(0);
 }
 
@@ -366,7 +419,7 @@ static PetscErrorCode View(void *ctx, SlumpProblem prob, PetscViewer viewer)
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "level set: P%" PetscInt_FMT ", SUPG %g, h %g, reinitialisation %s", ls->degree, (double)ls->supg, (double)ls->h, ls->reinit_name));
   if (ls->reinit.filtered) PetscCall(PetscViewerASCIIPrintf(viewer, " (lambda %g, E %g)", (double)ls->lambda, (double)(ls->E_cells * ls->h)));
-  if (ls->reinit.apply) PetscCall(PetscViewerASCIIPrintf(viewer, " every %" PetscInt_FMT " steps", ls->reinit_every));
+  if (ls->reinit.apply) PetscCall(PetscViewerASCIIPrintf(viewer, " every %" PetscInt_FMT " steps%s", ls->reinit_every, ls->volume_correction ? ", volume corrected" : ""));
   PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   PetscFunctionReturn(0);
 }
@@ -442,6 +495,7 @@ PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls)
   PetscCall(PetscOptionsReal("-reinit_convective_lambda", "Redistancing speed lambda of the convective method", "", ls->lambda, &ls->lambda, NULL));
   PetscCall(PetscOptionsReal("-reinit_convective_width", "Filter width E of the convective method, in cells", "", ls->E_cells, &ls->E_cells, NULL));
   PetscCall(PetscOptionsInt("-reinit_hj_iterations", "Pseudo-time iterations of the Hamilton-Jacobi method", "", ls->hj_iterations, &ls->hj_iterations, NULL));
+  PetscCall(PetscOptionsBool("-reinit_volume_correction", "After each between-step reinitialisation, shift phi so that the material volume is the initial one", "", ls->volume_correction, &ls->volume_correction, NULL));
   PetscCall(PetscOptionsReal("-reinit_hj_cfl", "Pseudo-time step of the Hamilton-Jacobi method over the local mesh size", "", ls->hj_cfl, &ls->hj_cfl, NULL));
   PetscOptionsEnd();
   PetscCheck(ls->degree == 1 || ls->degree == 2, ls->comm, PETSC_ERR_USER_INPUT, "-levelset_degree must be 1 or 2; got %" PetscInt_FMT, ls->degree);
@@ -465,8 +519,34 @@ PetscErrorCode SlumpLevelSetSetLog(SlumpLevelSet ls, const char path[])
   PetscCallMPI(MPI_Comm_rank(ls->comm, &rank));
   if (rank == 0) {
     PetscCall(PetscFOpen(PETSC_COMM_SELF, path, "w", &ls->log));
-    PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "t,volume,drift,reinitialisations\n"));
+    PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "t,volume,drift,reinitialisations,x_min,x_max,y_max"));
+    for (PetscInt g = 0; g < ls->ngauge; ++g) PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",height_at_%g", (double)ls->gauge[g]));
+    PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "\n"));
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetSetVolumeCorrection(SlumpLevelSet ls, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  ls->volume_correction = on;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetGetVolumeShift(SlumpLevelSet ls, PetscReal *shift)
+{
+  PetscFunctionBeginUser;
+  *shift = ls->volume_shift;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetSetGauges(SlumpLevelSet ls, PetscInt n, const PetscReal x[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n >= 0 && n <= 4, ls->comm, PETSC_ERR_ARG_OUTOFRANGE, "At most 4 gauges; got %" PetscInt_FMT, n);
+  PetscCheck(!ls->log, ls->comm, PETSC_ERR_ORDER, "Set the gauges before opening the log");
+  ls->ngauge = n;
+  for (PetscInt g = 0; g < n; ++g) ls->gauge[g] = x[g];
   PetscFunctionReturn(0);
 }
 

@@ -216,6 +216,78 @@ PetscErrorCode SlumpLevelSetComputeVolume(SlumpLevelSet ls, PetscReal t, Vec X, 
   PetscFunctionReturn(0);
 }
 
+/* The polygon {phi < 0} of the linear interpolant on one sub-triangle
+   (at most four vertices, in order); returns the vertex count. */
+static PetscInt NegativePolygon(const SlumpLSNodes *nd, const PetscReal f[], PetscInt k, PetscReal poly[][2])
+{
+  const PetscInt *v = &nd->tri[3 * k];
+  PetscInt        n = 0;
+  for (PetscInt j = 0; j < 3; ++j) {
+    const PetscInt   a = v[j], b = v[(j + 1) % 3];
+    const PetscReal *xa = &nd->xy[2 * a], *xb = &nd->xy[2 * b];
+    if (f[a] < 0) {
+      poly[n][0] = xa[0];
+      poly[n][1] = xa[1];
+      ++n;
+    }
+    if ((f[a] < 0) != (f[b] < 0)) {
+      const PetscReal s = f[a] / (f[a] - f[b]);
+      poly[n][0]        = xa[0] + s * (xb[0] - xa[0]);
+      poly[n][1]        = xa[1] + s * (xb[1] - xa[1]);
+      ++n;
+    }
+  }
+  return n;
+}
+
+PetscErrorCode SlumpLevelSetComputeExtent(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal box[4])
+{
+  SlumpLSNodes *nd;
+  PetscReal    *f, b[4] = {PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL, PETSC_MAX_REAL}; /* -xmin, xmax, -ymin, ymax as minima of negatives */
+  PetscFunctionBeginUser;
+  PetscCall(GetNodal(ls, t, X, PETSC_FALSE, &nd, &f));
+  for (PetscInt k = 0; k < nd->ntri; ++k) {
+    PetscReal poly[6][2];
+    PetscInt  n = NegativePolygon(nd, f, k, poly);
+    for (PetscInt j = 0; j < n; ++j) {
+      b[0] = PetscMin(b[0], poly[j][0]);
+      b[1] = PetscMin(b[1], -poly[j][0]);
+      b[2] = PetscMin(b[2], poly[j][1]);
+      b[3] = PetscMin(b[3], -poly[j][1]);
+    }
+  }
+  PetscCall(PetscFree(f));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, b, 4, MPIU_REAL, MPIU_MIN, ls->comm));
+  box[0] = b[0];
+  box[1] = -b[1];
+  box[2] = b[2];
+  box[3] = -b[3];
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetComputeHeightAt(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal x0, PetscReal *top, PetscBool *found)
+{
+  SlumpLSNodes *nd;
+  PetscReal    *f, ymax = -PETSC_MAX_REAL;
+  PetscFunctionBeginUser;
+  PetscCall(GetNodal(ls, t, X, PETSC_FALSE, &nd, &f));
+  for (PetscInt k = 0; k < nd->ntri; ++k) {
+    PetscReal poly[6][2];
+    PetscInt  n = NegativePolygon(nd, f, k, poly);
+    for (PetscInt j = 0; j < n; ++j) {
+      const PetscReal *p = poly[j], *q = poly[(j + 1) % n];
+      if ((p[0] - x0) * (q[0] - x0) > 0) continue;
+      if (p[0] == q[0]) ymax = PetscMax(ymax, PetscMax(p[1], q[1]));
+      else ymax = PetscMax(ymax, p[1] + (x0 - p[0]) / (q[0] - p[0]) * (q[1] - p[1]));
+    }
+  }
+  PetscCall(PetscFree(f));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &ymax, 1, MPIU_REAL, MPIU_MAX, ls->comm));
+  *found = ymax > -PETSC_MAX_REAL ? PETSC_TRUE : PETSC_FALSE;
+  *top   = ymax;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpLevelSetComputeGradientDeviation(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal band, PetscReal *mean, PetscReal *max)
 {
   SlumpLSNodes *nd;

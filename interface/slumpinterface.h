@@ -21,7 +21,10 @@
  *   -reinit_convective_lambda <v> redistancing speed lambda (default 1)
  *   -reinit_convective_width <w>  filter width E in cells (default 2)
  *   -reinit_hj_iterations <n>     pseudo-time iterations (default 30)
- *   -reinit_hj_cfl <c>            pseudo-time step over the local mesh size (default 0.8) */
+ *   -reinit_hj_cfl <c>            pseudo-time step over the local mesh size (default 0.8)
+ *   -reinit_volume_correction     after each between-step reinitialisation shift phi by
+ *                                 a constant so that the material volume is the initial
+ *                                 one (global correction; default off) */
 #pragma once
 
 #include "slump.h"
@@ -51,7 +54,8 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetSetReinitType(SlumpLevelSet ls, const c
 PETSC_EXTERN PetscErrorCode SlumpLevelSetGetReinitType(SlumpLevelSet ls, const char **name);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls);
 /* Interface record, one row per accepted step: t, material volume, drift,
-   reinitialisations so far (rank 0 writes; NULL closes). */
+   reinitialisations so far, the material's extent x_min, x_max, y_max and
+   the heights at the gauges (rank 0 writes; NULL closes). */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetLog(SlumpLevelSet ls, const char path[]);
 /* Record the volume at (t, X) (the first call sets the reference volume);
    called after every accepted step, and by the driver at the initial time. */
@@ -60,6 +64,15 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetRecordVolume(SlumpLevelSet ls, PetscRea
 /* Material volume (area in 2D) of {phi < 0}, exact for the piecewise linear
    interpolant of the nodal values (collective). */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeVolume(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal *volume);
+/* Bounding box {xmin, xmax, ymin, ymax} of the material {phi < 0} of the
+   linear interpolant (the front is xmax for a collapse spreading to +x). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeExtent(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal box[4]);
+/* Highest point of the material on the vertical line x = x0 (a wall, the
+   symmetry axis, a gauge); found = PETSC_FALSE if no material is there. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeHeightAt(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal x0, PetscReal *top, PetscBool *found);
+/* Vertical gauges whose material height is logged (up to 4): the log then
+   has the columns height_at_<x> after x_min, x_max, y_max. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetGauges(SlumpLevelSet ls, PetscInt n, const PetscReal x[]);
 /* | |grad d| - 1 | over the band of cells within `band` cells of the zero
    contour (d: the distance, recovered from the filtered state if need be):
    area-weighted mean and maximum (collective). */
@@ -67,6 +80,10 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeGradientDeviation(SlumpLevelSet 
 /* Apply the between-step action now (whatever -reinit_every says). */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetReinitialise(SlumpLevelSet ls, PetscReal t, Vec X, PetscBool *changed);
 /* Volumes: initial, current; number of between-step actions applied. */
+/* Global volume correction after each between-step reinitialisation. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetVolumeCorrection(SlumpLevelSet ls, PetscBool on);
+/* Sum of the shifts applied by the volume correction (its total effect on phi). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetGetVolumeShift(SlumpLevelSet ls, PetscReal *shift);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetGetStats(SlumpLevelSet ls, PetscReal *volume0, PetscReal *volume, PetscReal *max_drift, PetscInt *nreinit);
 /* Smallest edge length used by the stabilisation and the widths. */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetGetMeshSize(SlumpLevelSet ls, PetscReal *h);

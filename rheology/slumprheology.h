@@ -64,5 +64,14 @@ typedef struct {
   PetscPointFunc yielded;     /* 1 where ||tau|| > tau_y            */
   PetscPointFunc ap_f1_u;     /* anti-plane: eta grad w             */
   PetscPointJac  ap_g3_uu;    /* anti-plane: d f1 / d grad w        */
+  /* two-phase (SlumpProblemSetTwoPhase): mixed with the ambient fluid by the
+     level set, the last field */
+  PetscPointFunc tp_f1_u;
+  PetscPointJac  tp_g2_up;
+  PetscPointJac  tp_g3_uu;
+  PetscPointJac  tp_g2_uphi;  /* d f1_u / d phi                     */
+  PetscPointFunc tp_eta;      /* mixed viscosity                    */
+  PetscPointFunc tp_diss;     /* material dissipation m eta ||gdot||^2 */
+  PetscPointFunc tp_yielded;  /* material fraction where yielded    */
 } SlumpRheologyPointwise;
 PETSC_EXTERN PetscErrorCode SlumpRheologyGetPointwise(SlumpRheology rheo, SlumpRheologyPointwise *pw);
