@@ -88,7 +88,7 @@ static PetscErrorCode WriteDiagnostics(RunCtx *r, PetscReal t, Vec X, PetscReal 
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemComputeDiagnostics(r->prob, t, X, &d));
   r->last = d;
-  if (r->series) fprintf(r->series, "%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e\n", (double)t, (double)d.kinetic_energy, (double)d.mean_shear_rate, (double)d.max_shear_rate, (double)d.l2_shear_rate, (double)d.dissipation, (double)d.yielded_fraction, (double)d.flow_rate);
+  if (r->series) fprintf(r->series, "%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e\n", (double)t, (double)d.kinetic_energy, (double)d.mean_shear_rate, (double)d.max_shear_rate, (double)d.l2_shear_rate, (double)d.dissipation, (double)d.yielded_fraction, (double)d.flow_rate, (double)d.potential_energy);
   if (r->writer) PetscCall(SlumpFieldWriterWrite(r->writer, t, X));
   if (!r->quiet) PetscCall(PetscPrintf(r->comm, "t %10.4e  h %9.3e  q %d  newton %4d  linear %4d  KE %11.5e  mean|gdot| %11.5e\n", (double)t, (double)h, (int)order, (int)r->newton_since, (int)r->lin_since, (double)d.kinetic_energy, (double)d.mean_shear_rate));
   r->newton_since = r->lin_since = 0;
@@ -242,7 +242,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
 
   /* --- outputs --- */
   PetscCall(SlumpMakeDirectory(comm, dir));
-  PetscCall(OpenCSV(&r, dir, "series.csv", "t,kinetic_energy,mean_shear_rate,max_shear_rate,l2_shear_rate,dissipation,yielded_fraction,flow_rate", &r.series));
+  PetscCall(OpenCSV(&r, dir, "series.csv", "t,kinetic_energy,mean_shear_rate,max_shear_rate,l2_shear_rate,dissipation,yielded_fraction,flow_rate,potential_energy", &r.series));
   if (!scene->steady) PetscCall(OpenCSV(&r, dir, "steps.csv", "t,h,order,newton_its,lin_its,err_test_fails,conv_fails,kinetic_energy", &r.steps));
   if (fields) PetscCall(SlumpFieldWriterCreate(prob, dir, &r.writer));
 

@@ -49,6 +49,20 @@ static void ShearRateSquaredTP(SLUMP_PW_ARGS, PetscScalar f[])
   f[0] = Fraction(Nf, uOff, u, constants) * g * g;
 }
 
+/* -rho g . x */
+static void PotentialEnergy(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  PetscReal gx = 0.0;
+  for (PetscInt d = 0; d < dim; ++d) gx += PetscRealPart(constants[SLUMP_C_GX + d]) * x[d];
+  f[0] = -PetscRealPart(constants[SLUMP_C_RHO]) * gx;
+}
+
+static void PotentialEnergyTP(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  PotentialEnergy(dim, Nf, NfAux, uOff, uOff_x, u, u_t, u_x, aOff, aOff_x, a, a_t, a_x, t, x, numConstants, constants, f);
+  f[0] *= Fraction(Nf, uOff, u, constants);
+}
+
 static void MaterialFraction(SLUMP_PW_ARGS, PetscScalar f[])
 {
   f[0] = Fraction(Nf, uOff, u, constants);
@@ -132,18 +146,25 @@ PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, 
 PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d)
 {
   SlumpRheologyPointwise pw;
-  PetscReal              r[6], area = prob->area;
+  PetscReal              r[7], area = prob->area;
+  const PetscBool        body = (prob->effects & SLUMP_EFFECT_BODY_FORCE) && prob->formulation == SLUMP_FORMULATION_PLANE ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
   PetscCall(SlumpProblemFillLocal(prob, t, X));
+  r[6] = 0.0;
   if (prob->twoPhase) {
-    PetscPointFunc obj[6] = {KineticEnergyTP, ShearRateTP, ShearRateSquaredTP, pw.tp_diss, pw.tp_yielded, MaterialFraction};
-    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 6, obj, r));
+    PetscPointFunc obj[7] = {KineticEnergyTP, ShearRateTP, ShearRateSquaredTP, pw.tp_diss, pw.tp_yielded, MaterialFraction, PotentialEnergyTP};
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, body ? 7 : 6, obj, r));
     area = prob->materialArea = r[5];
   } else {
-    PetscPointFunc obj[5] = {KineticEnergy, ShearRate, ShearRateSquared, pw.diss_yield, pw.yielded};
-    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 5, obj, r));
+    PetscPointFunc obj[7] = {KineticEnergy, ShearRate, ShearRateSquared, pw.diss_yield, pw.yielded, NULL, PotentialEnergy};
+    if (body) {
+      obj[5] = PotentialEnergy;
+      PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 6, obj, r));
+      r[6] = r[5];
+    } else PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 5, obj, r));
   }
+  d->potential_energy = r[6];
   d->t                = t;
   d->kinetic_energy   = r[0];
   d->mean_shear_rate  = r[1] / area;

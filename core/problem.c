@@ -863,6 +863,18 @@ PetscErrorCode SlumpKSPSetDirect(KSP ksp)
   PetscCall(PCSetType(pc, PCLU));
 #if defined(PETSC_HAVE_MUMPS)
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  {
+    /* MUMPS's workspace +200 % (ICNTL(14), its default is +20 %) unless the
+       user sets it: with density ratios of 1e-3 the delayed pivots overflow
+       the default estimate (INFOG(1) = -9) */
+    const char *prefix;
+    char        name[256];
+    PetscBool   has;
+    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%smat_mumps_icntl_14", prefix ? prefix : ""));
+    PetscCall(PetscOptionsHasName(NULL, NULL, name, &has));
+    if (!has) PetscCall(PetscOptionsSetValue(NULL, name, "200"));
+  }
 #endif
   PetscCall(KSPSetFromOptions(ksp));
   PetscFunctionReturn(0);

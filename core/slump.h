@@ -186,8 +186,12 @@ typedef struct {
   PetscReal dissipation;        /* int tau : D = int eta ||gdot||^2           */
   PetscReal yielded_fraction;   /* |{||tau|| > tau_y}| / |Omega| (1 if no yield stress) */
   PetscReal flow_rate;          /* int u . n over the flow-rate boundary, if any; anti-plane: int w */
+  PetscReal potential_energy;   /* -int rho g . x, the body force's potential (0 without body force) */
 } SlumpDiagnostics;
 
+/* Two-phase (SlumpProblemSetTwoPhase): every quantity is the material's,
+   weighted by its fraction m(phi): kinetic, potential energy and dissipation
+   of the material, mean shear rate and yielded fraction over its area. */
 /* Single diagnostics, for arrest criteria (root functions). */
 typedef enum {
   SLUMP_DIAG_MEAN_SHEAR_RATE,
