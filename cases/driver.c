@@ -302,6 +302,18 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   }
   PetscCall(SlumpProblemComputeErrors(prob, t_final, X, err, nrm));
   if (scene->results) PetscCall(scene->results(scene, prob, t_final, X));
+  {
+    /* free surface: the final profile (the deposit of a collapse) */
+    SlumpLevelSet    ls;
+    SlumpFormulation form;
+    PetscCall(SlumpProblemGetLevelSet(prob, &ls));
+    PetscCall(SlumpProblemGetFormulation(prob, &form));
+    if (ls && form == SLUMP_FORMULATION_PLANE) {
+      char path[PETSC_MAX_PATH_LEN];
+      PetscCall(PetscSNPrintf(path, sizeof(path), "%s/deposit.csv", dir));
+      PetscCall(SlumpLevelSetWriteProfile(ls, t_final, X, path));
+    }
+  }
   PetscCall(PetscTime(&t_end));
   PetscCall(PeakMemory(comm, &peak));
   if (!scene->steady && scene->exact_arrest) {

@@ -275,6 +275,23 @@ PetscErrorCode SlumpAssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX, V
   for (PetscInt f = 0; f < prob->assembly->Nf; ++f)
     for (PetscInt h = 0; h < prob->assembly->Nf; ++h) PetscCall(PetscDSGetJacobian(ds, f, h, &g[f][h][0], &g[f][h][1], &g[f][h][2], &g[f][h][3]));
   PetscCall(SlumpAssembleJacobianWith(prob, t, locX, locXdot, shift, g, Jac));
+  if (prob->wallFriction) {
+    /* solution-dependent natural terms (wall friction): PETSc's face loop */
+    PetscInt nb;
+    PetscCall(PetscDSGetNumBoundary(ds, &nb));
+    for (PetscInt b = 0; b < nb; ++b) {
+      PetscWeakForm           wf;
+      DMBoundaryConditionType type;
+      DMLabel                 label;
+      PetscInt                nv, field;
+      const PetscInt         *values;
+      PetscCall(PetscDSGetBoundary(ds, b, &wf, &type, NULL, &label, &nv, &values, &field, NULL, NULL, NULL, NULL, NULL));
+      if (type != DM_BC_NATURAL) continue;
+      PetscCall(DMPlexComputeBdJacobianSingle(prob->dm, t, wf, label, nv, values, field, locX, locXdot, shift, Jac, Jac));
+    }
+    PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
+  }
   PetscFunctionReturn(0);
 }
 

@@ -211,3 +211,84 @@ PetscPointJac SlumpPwSelectAntiPlaneG0(PetscInt e)
 {
   return (e & SLUMP_EFFECT_INERTIA) ? g0_ww_I : NULL;
 }
+
+/* Wall friction (SlumpProblemAddFrictionBC): f0 = m L u_t on the wall, with
+   u_t = (I - n n^T) u and L = beta (Navier) or mu_w P(p)/s, s = sqrt(|u_t|^2
+   + delta^2) (regularised Coulomb); m is the material fraction in two-phase
+   flows, 1 otherwise. */
+typedef struct {
+  PetscReal ut[3], T[9], m, dm, L, P, dP, s;
+  PetscInt  law;
+} WallState;
+
+static inline void WallEvaluate(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscScalar u[], const PetscReal n[], const PetscScalar constants[], WallState *w)
+{
+  PetscReal un = 0.0, s2 = 0.0;
+  for (PetscInt d = 0; d < dim; ++d) un += PetscRealPart(u[uOff[0] + d]) * n[d];
+  for (PetscInt c = 0; c < dim; ++c) {
+    w->ut[c] = PetscRealPart(u[uOff[0] + c]) - un * n[c];
+    s2 += w->ut[c] * w->ut[c];
+    for (PetscInt e = 0; e < dim; ++e) w->T[c * dim + e] = (c == e ? 1.0 : 0.0) - n[c] * n[e];
+  }
+  w->m  = 1.0;
+  w->dm = 0.0;
+  if (Nf > 2 && PetscRealPart(constants[SLUMP_C_MIX_EPS]) > 0) SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &w->m, &w->dm);
+  w->law = (PetscInt)PetscRealPart(constants[SLUMP_C_WALL_LAW]);
+  if (w->law == SLUMP_WALL_NAVIER) {
+    w->L = PetscRealPart(constants[SLUMP_C_WALL_COEFF]);
+    w->P = w->dP = 0.0;
+    w->s = 1.0;
+  } else {
+    const PetscReal p = Nf > 1 ? PetscRealPart(u[uOff[1]]) : 0.0, dl = PetscRealPart(constants[SLUMP_C_WALL_REG]);
+    w->P = p > 0 ? p : 0.0;
+    w->dP = p > 0 ? 1.0 : 0.0;
+    w->s  = PetscSqrtReal(s2 + dl * dl);
+    w->L  = PetscRealPart(constants[SLUMP_C_WALL_COEFF]) * w->P / w->s;
+  }
+}
+
+void SlumpPwWallFrictionF0(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar f0[])
+{
+  WallState w;
+  WallEvaluate(dim, Nf, uOff, u, n, constants, &w);
+  for (PetscInt c = 0; c < dim; ++c) f0[c] = w.m * w.L * w.ut[c];
+}
+
+void SlumpPwWallFrictionG0uu(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, PetscReal u_tShift, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar g0[])
+{
+  WallState w;
+  if (PetscRealPart(constants[SLUMP_C_JACMODE]) == 1) { /* consistent initialisation: [rho M, B^T; B, 0] */
+    for (PetscInt c = 0; c < dim * dim; ++c) g0[c] = 0.0;
+    return;
+  }
+  WallEvaluate(dim, Nf, uOff, u, n, constants, &w);
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt e = 0; e < dim; ++e) {
+      PetscReal v = w.L * w.T[c * dim + e];
+      /* Coulomb: d(1/s)/du_e = -ut_e / s^3 (T ut = ut) */
+      if (w.law != SLUMP_WALL_NAVIER) v -= w.L * w.ut[c] * w.ut[e] / (w.s * w.s);
+      g0[c * dim + e] = w.m * v;
+    }
+}
+
+void SlumpPwWallFrictionG0up(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, PetscReal u_tShift, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar g0[])
+{
+  WallState w;
+  if (PetscRealPart(constants[SLUMP_C_JACMODE]) == 1) { /* consistent initialisation: [rho M, B^T; B, 0] */
+    for (PetscInt c = 0; c < dim; ++c) g0[c] = 0.0;
+    return;
+  }
+  WallEvaluate(dim, Nf, uOff, u, n, constants, &w);
+  for (PetscInt c = 0; c < dim; ++c) g0[c] = w.law == SLUMP_WALL_NAVIER ? 0.0 : w.m * PetscRealPart(constants[SLUMP_C_WALL_COEFF]) * w.dP / w.s * w.ut[c];
+}
+
+void SlumpPwWallFrictionG0uphi(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, PetscReal u_tShift, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar g0[])
+{
+  WallState w;
+  if (PetscRealPart(constants[SLUMP_C_JACMODE]) == 1) { /* consistent initialisation: [rho M, B^T; B, 0] */
+    for (PetscInt c = 0; c < dim; ++c) g0[c] = 0.0;
+    return;
+  }
+  WallEvaluate(dim, Nf, uOff, u, n, constants, &w);
+  for (PetscInt c = 0; c < dim; ++c) g0[c] = w.dm * w.L * w.ut[c];
+}

@@ -3,6 +3,7 @@
 #include "slumpimpl.h"
 
 const char *const SlumpEffectNames[] = {"inertia", "convection", "body_force", "free_surface"};
+const char *const SlumpWallLaws[]    = {"navier", "coulomb", "SlumpWallLaw", "SLUMP_WALL_", NULL};
 
 static PetscErrorCode ZeroFn(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx);
 
@@ -135,6 +136,33 @@ PetscErrorCode SlumpProblemAddFreeSlipBC(SlumpProblem prob, const char label[])
   bc->kind = SLUMP_BC_FREESLIP;
   PetscCall(PetscSNPrintf(bc->name, sizeof(bc->name), "freeslip_%s", label));
   PetscCall(PetscStrncpy(bc->label, label, sizeof(bc->label)));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemAddFrictionBC(SlumpProblem prob, const char label[], SlumpWallLaw law, PetscReal coeff, PetscReal reg)
+{
+  SlumpBC *bc = NULL;
+  PetscFunctionBeginUser;
+  PetscCheck(coeff >= 0, prob->comm, PETSC_ERR_USER_INPUT, "The wall friction coefficient must be >= 0; got %g", (double)coeff);
+  PetscCheck(law == SLUMP_WALL_NAVIER || reg > 0, prob->comm, PETSC_ERR_USER_INPUT, "The Coulomb wall law needs a velocity scale delta > 0; got %g", (double)reg);
+  PetscCheck(!prob->wallFriction || (prob->wallLaw == law && prob->wallCoeff == coeff && prob->wallReg == reg), prob->comm, PETSC_ERR_SUP, "One wall friction law per problem: %s was already set", SlumpWallLaws[prob->wallLaw]);
+  PetscCall(AddBC(prob, &bc));
+  bc->kind = SLUMP_BC_FRICTION;
+  PetscCall(PetscSNPrintf(bc->name, sizeof(bc->name), "friction_%s", label));
+  PetscCall(PetscStrncpy(bc->label, label, sizeof(bc->label)));
+  prob->wallFriction = PETSC_TRUE;
+  prob->wallLaw      = law;
+  prob->wallCoeff    = coeff;
+  prob->wallReg      = reg;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetPressureReference(SlumpProblem prob, const PetscReal x[])
+{
+  PetscFunctionBeginUser;
+  prob->pinSet = PETSC_TRUE;
+  for (PetscInt d = 0; d < 3; ++d) prob->pinX[d] = 0.0;
+  for (PetscInt d = 0; d < 2; ++d) prob->pinX[d] = x[d];
   PetscFunctionReturn(0);
 }
 
@@ -438,7 +466,7 @@ static PetscErrorCode PressureDetermined(SlumpProblem prob, PetscBool *determine
           if (!prob->bc[b].ncomp)
             for (PetscInt d = 0; d < dim; ++d) fixed[d] = PETSC_TRUE;
           for (PetscInt k = 0; k < prob->bc[b].ncomp; ++k) fixed[prob->bc[b].comps[k]] = PETSC_TRUE;
-        } else if (prob->bc[b].kind == SLUMP_BC_FREESLIP) {
+        } else if (prob->bc[b].kind == SLUMP_BC_FREESLIP || prob->bc[b].kind == SLUMP_BC_FRICTION) {
           for (PetscInt d = 0; d < dim; ++d)
             if (PetscAbsReal(nrm[d]) > 1e-8 * PetscSqrtReal(area)) fixed[d] = PETSC_TRUE;
         }
@@ -476,7 +504,11 @@ static PetscErrorCode PinPressure(SlumpProblem prob)
     PetscInt     off;
     PetscCall(DMGetLocalSection(cdm, &cs));
     PetscCall(PetscSectionGetOffset(cs, v, &off));
-    const PetscReal k0 = PetscRealPart(xa[off] + xa[off + 1]), k1 = PetscRealPart(xa[off]);
+    PetscReal k0 = PetscRealPart(xa[off] + xa[off + 1]), k1 = PetscRealPart(xa[off]);
+    if (prob->pinSet) { /* nearest to the reference point */
+      k0 = PetscSqr(PetscRealPart(xa[off]) - prob->pinX[0]) + PetscSqr(PetscRealPart(xa[off + 1]) - prob->pinX[1]);
+      k1 = PetscRealPart(xa[off]);
+    }
     if (k0 < key[0] - 1e-12 || (PetscAbsReal(k0 - key[0]) <= 1e-12 && k1 < key[1])) {
       key[0] = k0;
       key[1] = k1;
@@ -582,6 +614,11 @@ PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
     prob->constants[SLUMP_C_MIX_ETA] = prob->etaAmbient;
     prob->constants[SLUMP_C_MIX_EPS] = prob->mixEps;
   }
+  if (prob->wallFriction) {
+    prob->constants[SLUMP_C_WALL_LAW]   = prob->wallLaw;
+    prob->constants[SLUMP_C_WALL_COEFF] = prob->wallCoeff;
+    prob->constants[SLUMP_C_WALL_REG]   = prob->wallReg;
+  }
   PetscCall(DMGetDS(prob->dm, &ds));
   PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
   PetscCall(DMGetDS(prob->dmDiag, &ds));
@@ -646,6 +683,23 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
       PetscInt comp;
       PetscCall(FreeSlipComponent(prob, label, nids, ids, &comp));
       PetscCall(DMAddBoundary(prob->dm, DM_BC_ESSENTIAL, bc->name, label, nids, ids, 0, 1, &comp, (void (*)(void))ZeroFn, (void (*)(void))ZeroFn, NULL, NULL));
+    } break;
+    case SLUMP_BC_FRICTION: {
+      PetscInt      comp, bd;
+      char          name[80];
+      PetscWeakForm wf;
+      PetscCheck(prob->formulation == SLUMP_FORMULATION_PLANE, prob->comm, PETSC_ERR_SUP, "Wall friction needs the plane formulation");
+      PetscCall(FreeSlipComponent(prob, label, nids, ids, &comp));
+      PetscCall(DMAddBoundary(prob->dm, DM_BC_ESSENTIAL, bc->name, label, nids, ids, 0, 1, &comp, (void (*)(void))ZeroFn, (void (*)(void))ZeroFn, NULL, NULL));
+      PetscCall(PetscSNPrintf(name, sizeof(name), "%s_traction", bc->name));
+      PetscCall(DMAddBoundary(prob->dm, DM_BC_NATURAL, name, label, nids, ids, 0, 0, NULL, NULL, NULL, NULL, &bd));
+      PetscCall(PetscDSGetBoundary(ds, bd, &wf, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL));
+      for (PetscInt k = 0; k < nids; ++k) {
+        PetscCall(PetscWeakFormSetIndexBdResidual(wf, label, ids[k], 0, 0, 0, SlumpPwWallFrictionF0, 0, NULL));
+        PetscCall(PetscWeakFormSetIndexBdJacobian(wf, label, ids[k], 0, 0, 0, 0, SlumpPwWallFrictionG0uu, 0, NULL, 0, NULL, 0, NULL));
+        if (prob->wallLaw == SLUMP_WALL_COULOMB) PetscCall(PetscWeakFormSetIndexBdJacobian(wf, label, ids[k], 0, 1, 0, 0, SlumpPwWallFrictionG0up, 0, NULL, 0, NULL, 0, NULL));
+        if (prob->twoPhase) PetscCall(PetscWeakFormSetIndexBdJacobian(wf, label, ids[k], 0, prob->extraField, 0, 0, SlumpPwWallFrictionG0uphi, 0, NULL, 0, NULL, 0, NULL));
+      }
     } break;
     case SLUMP_BC_TRACTION: {
       PetscInt     bd;

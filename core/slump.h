@@ -61,7 +61,10 @@ enum {
   SLUMP_C_MIX_RHO = SLUMP_C_FIELD + SLUMP_C_FIELD_MAX, /* two-phase: ambient density          */
   SLUMP_C_MIX_ETA = SLUMP_C_MIX_RHO + 1,               /* two-phase: ambient viscosity        */
   SLUMP_C_MIX_EPS = SLUMP_C_MIX_RHO + 2,               /* two-phase: Heaviside half-width     */
-  SLUMP_C_NUM     = SLUMP_C_MIX_RHO + 3
+  SLUMP_C_WALL_LAW   = SLUMP_C_MIX_RHO + 3, /* wall friction: 0 Navier, 1 Coulomb          */
+  SLUMP_C_WALL_COEFF = SLUMP_C_MIX_RHO + 4, /* wall friction: beta or mu_w                 */
+  SLUMP_C_WALL_REG   = SLUMP_C_MIX_RHO + 5, /* wall friction: Coulomb velocity scale delta */
+  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 6
 };
 #define SLUMP_MAX_FIELDS 3
 
@@ -111,6 +114,19 @@ PETSC_EXTERN PetscErrorCode SlumpProblemGetRheology(SlumpProblem prob, SlumpRheo
 PETSC_EXTERN PetscErrorCode SlumpProblemAddVelocityBC(SlumpProblem prob, const char name[], const char label[], PetscInt ncomp, const PetscInt comps[], SlumpPointFn g, SlumpPointFn g_t, void *ctx);
 /* Zero normal velocity, tangential traction free (axis-aligned boundaries). */
 PETSC_EXTERN PetscErrorCode SlumpProblemAddFreeSlipBC(SlumpProblem prob, const char label[]);
+/* Wall friction on an axis-aligned wall: zero normal velocity (essential)
+   and a tangential traction opposing the wall velocity u_t (natural, with
+   its exact Jacobian):
+     navier:  t = -beta m u_t                                  (coeff = beta)
+     coulomb: t = -mu_w m P(p) u_t / sqrt(|u_t|^2 + delta^2)    (coeff = mu_w, reg = delta)
+   with P(p) = max(p, 0) and m = 1, or in two-phase flows the material
+   fraction m(phi): the ambient fluid slips, and across the contact line the
+   friction fades over the mixing width (the slip cell of Riber's thesis,
+   sec. 4.3.1.1, in a smooth form). A large beta is no slip under the
+   material by penalty. One friction law per problem (any number of labels). */
+typedef enum { SLUMP_WALL_NAVIER, SLUMP_WALL_COULOMB } SlumpWallLaw;
+PETSC_EXTERN const char *const SlumpWallLaws[];
+PETSC_EXTERN PetscErrorCode SlumpProblemAddFrictionBC(SlumpProblem prob, const char label[], SlumpWallLaw law, PetscReal coeff, PetscReal reg);
 /* Imposed traction (natural condition); a label without a condition is traction free. */
 PETSC_EXTERN PetscErrorCode SlumpProblemAddTractionBC(SlumpProblem prob, const char label[], SlumpTractionFn traction);
 /* Replace the momentum source (body force) by a scene's own pointwise term f0_u. */
@@ -121,6 +137,12 @@ PETSC_EXTERN PetscErrorCode SlumpProblemSetInitialVelocity(SlumpProblem prob, Sl
 /* Transport formulation: the velocity u(t, x) everywhere (u_t: its time
    derivative, NULL if steady). */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetPrescribedVelocity(SlumpProblem prob, SlumpPointFn u, SlumpPointFn u_t, void *ctx);
+/* The pressure is fixed to 0 at the mesh vertex nearest to x when no
+   boundary determines it (closed boxes). Default: the vertex of least x + y,
+   which suits a Newtonian law; pressure-dependent laws (mu(I),
+   Drucker-Prager) need the reference where the pressure is truly 0 (the top
+   of a box of air). */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetPressureReference(SlumpProblem prob, const PetscReal x[]);
 /* Two-phase mixing (needs the extra field, a level set phi, negative in the
    material): density and viscosity are mixed with the smoothed Heaviside
    H(phi) = 0 (phi < -w), 1 (phi > w), (1 + phi/w + sin(pi phi/w)/pi)/2

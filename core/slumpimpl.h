@@ -9,7 +9,7 @@
 
 typedef struct _n_SlumpAssembly *SlumpAssembly;
 
-typedef enum { SLUMP_BC_DIRICHLET, SLUMP_BC_FREESLIP, SLUMP_BC_TRACTION } SlumpBCKind;
+typedef enum { SLUMP_BC_DIRICHLET, SLUMP_BC_FREESLIP, SLUMP_BC_TRACTION, SLUMP_BC_FRICTION } SlumpBCKind;
 
 typedef struct {
   SlumpBCKind     kind;
@@ -62,6 +62,13 @@ struct _n_SlumpProblem {
   PetscBool     twoPhase;
   PetscReal     rhoAmbient, etaAmbient, mixWidth, mixEps;
   PetscReal     materialArea; /* of the last diagnostics pass */
+  /* wall friction (SlumpProblemAddFrictionBC) */
+  PetscBool     wallFriction;
+  SlumpWallLaw  wallLaw;
+  PetscReal     wallCoeff, wallReg;
+  /* pressure reference point (closed boxes) */
+  PetscBool     pinSet;
+  PetscReal     pinX[3];
 };
 
 PETSC_INTERN PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem);
@@ -86,5 +93,9 @@ PETSC_INTERN PetscPointJac  SlumpPwSelectG1(PetscInt effects, PetscBool twophase
 PETSC_INTERN PetscPointJac  SlumpPwSelectG0Phi(PetscInt effects);
 PETSC_INTERN PetscPointFunc SlumpPwSelectAntiPlaneF0(PetscInt effects);
 PETSC_INTERN PetscPointJac  SlumpPwSelectAntiPlaneG0(PetscInt effects);
+PETSC_INTERN void           SlumpPwWallFrictionF0(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);
+PETSC_INTERN void           SlumpPwWallFrictionG0uu(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);
+PETSC_INTERN void           SlumpPwWallFrictionG0up(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);
+PETSC_INTERN void           SlumpPwWallFrictionG0uphi(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);
 PETSC_INTERN void           SlumpPwContinuityF0(SLUMP_PW_ARGS, PetscScalar f0[]);
 PETSC_INTERN void           SlumpPwContinuityG1(SLUMP_PWJ_ARGS, PetscScalar g1[]);

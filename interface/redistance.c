@@ -288,6 +288,64 @@ PetscErrorCode SlumpLevelSetComputeHeightAt(SlumpLevelSet ls, PetscReal t, Vec X
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpLevelSetComputeProfile(SlumpLevelSet ls, PetscReal t, Vec X, PetscInt npt, const PetscReal x0[], PetscReal top[])
+{
+  SlumpLSNodes *nd;
+  PetscReal    *f;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < npt; ++i) top[i] = -PETSC_MAX_REAL;
+  PetscCall(GetNodal(ls, t, X, PETSC_FALSE, &nd, &f));
+  for (PetscInt k = 0; k < nd->ntri; ++k) {
+    PetscReal poly[6][2], lo = PETSC_MAX_REAL, hi = -PETSC_MAX_REAL;
+    PetscInt  n = NegativePolygon(nd, f, k, poly);
+    for (PetscInt j = 0; j < n; ++j) {
+      lo = PetscMin(lo, poly[j][0]);
+      hi = PetscMax(hi, poly[j][0]);
+    }
+    for (PetscInt i = 0; i < npt && n; ++i) {
+      if (x0[i] < lo || x0[i] > hi) continue;
+      for (PetscInt j = 0; j < n; ++j) {
+        const PetscReal *p = poly[j], *q = poly[(j + 1) % n];
+        if ((p[0] - x0[i]) * (q[0] - x0[i]) > 0) continue;
+        if (p[0] == q[0]) top[i] = PetscMax(top[i], PetscMax(p[1], q[1]));
+        else top[i] = PetscMax(top[i], p[1] + (x0[i] - p[0]) / (q[0] - p[0]) * (q[1] - p[1]));
+      }
+    }
+  }
+  PetscCall(PetscFree(f));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, top, npt, MPIU_REAL, MPIU_MAX, ls->comm));
+  for (PetscInt i = 0; i < npt; ++i)
+    if (top[i] == -PETSC_MAX_REAL) top[i] = 0.0;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetWriteProfile(SlumpLevelSet ls, PetscReal t, Vec X, const char path[])
+{
+  DM          dm;
+  PetscReal   lo[3], hi[3], *x, *top;
+  PetscInt    npt;
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetDM(ls->prob, &dm));
+  PetscCall(DMGetBoundingBox(dm, lo, hi));
+  /* four samples per smallest edge, at least 101 */
+  npt = (PetscInt)PetscCeilReal(4.0 * (hi[0] - lo[0]) / ls->h) + 1;
+  npt = PetscMax(npt, 101);
+  PetscCall(PetscMalloc2(npt, &x, npt, &top));
+  for (PetscInt i = 0; i < npt; ++i) x[i] = lo[0] + (hi[0] - lo[0]) * i / (npt - 1);
+  PetscCall(SlumpLevelSetComputeProfile(ls, t, X, npt, x, top));
+  PetscCallMPI(MPI_Comm_rank(ls->comm, &rank));
+  if (!rank) {
+    FILE *fp;
+    PetscCall(PetscFOpen(PETSC_COMM_SELF, path, "w", &fp));
+    PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "x,height\n"));
+    for (PetscInt i = 0; i < npt; ++i) PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "%.10g,%.10g\n", (double)x[i], (double)top[i]));
+    PetscCall(PetscFClose(PETSC_COMM_SELF, fp));
+  }
+  PetscCall(PetscFree2(x, top));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpLevelSetComputeGradientDeviation(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal band, PetscReal *mean, PetscReal *max)
 {
   SlumpLSNodes *nd;

@@ -72,6 +72,12 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeExtent(SlumpLevelSet ls, PetscRe
 PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeHeightAt(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal x0, PetscReal *top, PetscBool *found);
 /* Vertical gauges whose material height is logged (up to 4): the log then
    has the columns height_at_<x> after x_min, x_max, y_max. */
+/* Heights of the material on the vertical lines x0[npt] (0 where there is
+   none), in one pass (collective). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeProfile(SlumpLevelSet ls, PetscReal t, Vec X, PetscInt npt, const PetscReal x0[], PetscReal top[]);
+/* The profile across the mesh (four samples per smallest edge) as CSV
+   x,height (rank 0 writes): the deposit of a collapse at its final time. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetWriteProfile(SlumpLevelSet ls, PetscReal t, Vec X, const char path[]);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetGauges(SlumpLevelSet ls, PetscInt n, const PetscReal x[]);
 /* | |grad d| - 1 | over the band of cells within `band` cells of the zero
    contour (d: the distance, recovered from the filtered state if need be):

@@ -25,8 +25,14 @@
 #include "common.h"
 #include "slumpinterface.h"
 
+typedef enum { FLOOR_SLIP, FLOOR_NOSLIP, FLOOR_NAVIER, FLOOR_COULOMB } FloorKind;
+static const char *const Floors[] = {"slip", "noslip", "navier", "coulomb"};
+
 typedef struct {
   PetscReal ri, hi, L, H, g;
+  FloorKind floor;
+  PetscReal fcoeff, freg; /* floor friction: beta or mu_w, Coulomb delta */
+  PetscReal runout_fit;   /* column_collapse: the thesis' fit of (r_f - r_i)/r_i (0: none) */
 } ColumnCtx;
 
 /* signed distance to the column [0, ri] x [0, hi] seen from the box: the
@@ -78,24 +84,32 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
     PetscCall(SlumpLevelSetGetVolumeShift(ls, &shift));
     PetscCall(SlumpSceneAddResult(scene, "volume_correction_shift", shift));
   }
+  if (c->runout_fit > 0) {
+    PetscCall(SlumpSceneAddResult(scene, "runout_over_ri", (box[1] - c->ri) / c->ri));
+    PetscCall(SlumpSceneAddResult(scene, "runout_fit_thesis", c->runout_fit));
+  }
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm comm, ColumnCtx *c, PetscReal rho, PetscReal rho_a, PetscReal eta_a, PetscBool noslip_floor)
+static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm comm, ColumnCtx *c, PetscReal rho, PetscReal rho_a, PetscReal eta_a)
 {
   SlumpLevelSet   ls;
   PetscReal       lower[2] = {0.0, 0.0}, upper[2];
-  const PetscInt  cx = 0, cy = 1;
-  const char     *floors[] = {"slip", "noslip"};
-  PetscInt        fl       = noslip_floor ? 1 : 0;
+  const PetscInt  cy = 1;
+  PetscInt        fl = (PetscInt)c->floor;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, NULL, "Column collapse", "");
   PetscCall(PetscOptionsReal("-column_width", "Initial width r_i of the column", "", c->ri, &c->ri, NULL));
   PetscCall(PetscOptionsReal("-column_height", "Initial height h_i of the column", "", c->hi, &c->hi, NULL));
   PetscCall(PetscOptionsReal("-box_length", "Length L of the box", "", c->L, &c->L, NULL));
   PetscCall(PetscOptionsReal("-box_height", "Height H of the box", "", c->H, &c->H, NULL));
-  PetscCall(PetscOptionsEList("-floor", "Floor condition under the material and the air", "", floors, 2, floors[fl], &fl, NULL));
+  PetscCall(PetscOptionsEList("-floor", "Floor condition: slip, noslip, navier (friction beta m(phi) u) or coulomb (mu_w m(phi) p u/sqrt(u^2+delta^2))", "", Floors, 4, Floors[fl], &fl, NULL));
+  PetscCall(PetscOptionsReal("-floor_friction", "Floor friction coefficient: beta (navier) or mu_w (coulomb)", "", c->fcoeff, &c->fcoeff, NULL));
+  PetscCall(PetscOptionsReal("-floor_friction_delta", "Velocity scale delta of the regularised Coulomb floor", "", c->freg, &c->freg, NULL));
   PetscOptionsEnd();
+  c->floor = (FloorKind)fl;
+  PetscCheck(c->fcoeff >= 0, comm, PETSC_ERR_USER_INPUT, "-floor_friction must be >= 0; got %g", (double)c->fcoeff);
+  PetscCheck(c->floor != FLOOR_COULOMB || c->freg > 0, comm, PETSC_ERR_USER_INPUT, "-floor_friction_delta must be positive for -floor coulomb; got %g", (double)c->freg);
   PetscCheck(c->ri > 0 && c->hi > 0, comm, PETSC_ERR_USER_INPUT, "-column_width and -column_height must be positive; got %g and %g", (double)c->ri, (double)c->hi);
   PetscCheck(c->L > c->ri && c->H > c->hi, comm, PETSC_ERR_USER_INPUT, "The box (-box_length %g, -box_height %g) must be longer and higher than the column (%g x %g)", (double)c->L, (double)c->H, (double)c->ri, (double)c->hi);
   upper[0] = c->L;
@@ -109,9 +123,26 @@ static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm 
   PetscCall(SlumpProblemAddFreeSlipBC(prob, "left"));
   PetscCall(SlumpProblemAddFreeSlipBC(prob, "right"));
   PetscCall(SlumpProblemAddFreeSlipBC(prob, "top"));
-  if (fl == 1) PetscCall(SlumpProblemAddVelocityBC(prob, "floor", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
-  else PetscCall(SlumpProblemAddVelocityBC(prob, "floor", "bottom", 1, &cy, SlumpZeroVelocity, NULL, NULL));
-  (void)cx;
+  switch (c->floor) {
+  case FLOOR_SLIP:
+    PetscCall(SlumpProblemAddVelocityBC(prob, "floor", "bottom", 1, &cy, SlumpZeroVelocity, NULL, NULL));
+    break;
+  case FLOOR_NOSLIP:
+    PetscCall(SlumpProblemAddVelocityBC(prob, "floor", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+    break;
+  case FLOOR_NAVIER:
+    PetscCall(SlumpProblemAddFrictionBC(prob, "bottom", SLUMP_WALL_NAVIER, c->fcoeff, 0.0));
+    break;
+  case FLOOR_COULOMB:
+    PetscCall(SlumpProblemAddFrictionBC(prob, "bottom", SLUMP_WALL_COULOMB, c->fcoeff, c->freg));
+    break;
+  }
+  {
+    /* the closed box leaves the pressure to a constant: 0 at the top corner,
+       in the air, so that pressure-dependent laws see the right pressure */
+    const PetscReal ref[2] = {c->L, c->H};
+    PetscCall(SlumpProblemSetPressureReference(prob, ref));
+  }
   PetscCall(SlumpProblemSetTwoPhase(prob, rho_a, eta_a, 1.5));
   PetscCall(SlumpLevelSetCreate(prob, ColumnPhi, c, &ls));
   PetscCall(SlumpLevelSetSetReinitType(ls, "redistance"));
@@ -128,7 +159,8 @@ static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm 
   PetscCall(SlumpSceneAddParameter(scene, "column_width", c->ri));
   PetscCall(SlumpSceneAddParameter(scene, "column_height", c->hi));
   PetscCall(SlumpSceneAddParameter(scene, "aspect_ratio", c->hi / c->ri));
-  PetscCall(SlumpSceneAddParameter(scene, "noslip_floor", (PetscReal)fl));
+  PetscCall(SlumpSceneAddParameter(scene, "floor", (PetscReal)fl));
+  if (c->floor >= FLOOR_NAVIER) PetscCall(SlumpSceneAddParameter(scene, "floor_friction", c->fcoeff));
   PetscFunctionReturn(0);
 }
 
@@ -152,7 +184,8 @@ PetscErrorCode SlumpSceneCreate_DamBreak(SlumpScene scene, SlumpProblem prob, MP
   scene->arrest_threshold = 0.0;
   scene->mesh_n[0]        = 42;
   scene->mesh_n[1]        = 44;
-  PetscCall(ColumnSetUp(scene, prob, comm, c, 1000.0, 1.0, 1e-3, PETSC_FALSE));
+  c->floor           = FLOOR_SLIP;
+  PetscCall(ColumnSetUp(scene, prob, comm, c, 1000.0, 1.0, 1e-3));
   PetscFunctionReturn(0);
 }
 
@@ -185,8 +218,69 @@ PetscErrorCode SlumpSceneCreate_BinghamDamBreak(SlumpScene scene, SlumpProblem p
   scene->arrest_threshold = 2e-4;
   scene->mesh_n[0]        = 80;
   scene->mesh_n[1]        = 30;
-  PetscCall(ColumnSetUp(scene, prob, comm, c, 1.0, 1e-3, 1e-6 / re, PETSC_TRUE));
+  c->floor                = FLOOR_NOSLIP;
+  PetscCall(ColumnSetUp(scene, prob, comm, c, 1.0, 1e-3, 1e-6 / re));
   PetscCall(SlumpSceneAddParameter(scene, "re", re));
   PetscCall(SlumpSceneAddParameter(scene, "bn", bn));
+  PetscFunctionReturn(0);
+}
+
+/* Granular column collapse with the mu(I) rheology (Lagree, Staron & Popinet,
+   J. Fluid Mech. 2011, as in Riber's thesis sec. 4.3.1), dimensionless with
+   h_i, sqrt(g h_i), sqrt(h_i/g) and the grain density: h_i = 1,
+   r_i = 1/a, d = 1/sqrt(a N) for N grains; mu_s = 0.32, delta_mu = 0.28,
+   I0 = 0.4; ||gdot||_min = 1e-2, eta_min = 1e-4 (the thesis' choices);
+   air density 1e-3, viscosity 1e-4. The floor is rough: Navier friction
+   beta m(phi) with beta = 1e4 (no slip under the material by penalty, the
+   air and the contact line slip); -floor noslip|slip|coulomb for others.
+   The box is long enough for 1.5 times the thesis' run-out fit
+   (r_f - r_i)/r_i = 1.72 a^0.97 (a <= 7), 2.96 a^0.69 (a > 7). */
+PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+{
+  ColumnCtx    *c;
+  SlumpRheology rheo;
+  PetscReal     a = 0.5, grains = 0.0, h = 0.05;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  scene->ctx = c;
+  PetscOptionsBegin(comm, NULL, "Scene column_collapse", "");
+  PetscCall(PetscOptionsReal("-aspect_ratio", "Aspect ratio a = h_i/r_i of the column", "", a, &a, NULL));
+  PetscCall(PetscOptionsReal("-grains", "Number of grains N of the discrete reference (grain diameter 1/sqrt(a N); default: 3407, 6041, 6036 for a = 0.5, 1.42, 6.26, else 6000)", "", grains, &grains, NULL));
+  PetscCall(PetscOptionsReal("-cell_size", "Target cell size of the default mesh, in units of h_i", "", h, &h, NULL));
+  PetscOptionsEnd();
+  PetscCheck(a > 0, comm, PETSC_ERR_USER_INPUT, "-aspect_ratio must be positive; got %g", (double)a);
+  PetscCheck(grains >= 0, comm, PETSC_ERR_USER_INPUT, "-grains must be positive; got %g", (double)grains);
+  PetscCheck(h > 0, comm, PETSC_ERR_USER_INPUT, "-cell_size must be positive; got %g", (double)h);
+  if (grains == 0) {
+    if (PetscAbsReal(a - 0.5) < 1e-12) grains = 3407;
+    else if (PetscAbsReal(a - 1.42) < 1e-12) grains = 6041;
+    else if (PetscAbsReal(a - 6.26) < 1e-12) grains = 6036;
+    else grains = 6000;
+  }
+  c->hi         = 1.0;
+  c->ri         = 1.0 / a;
+  c->g          = 1.0;
+  c->runout_fit = a <= 7 ? 1.72 * PetscPowReal(a, 0.97) : 2.96 * PetscPowReal(a, 0.69);
+  c->L          = PetscCeilReal((c->ri * (1.0 + 1.5 * c->runout_fit) + 0.5) / h) * h;
+  c->H          = PetscCeilReal(1.25 / h) * h;
+  c->floor      = FLOOR_NAVIER;
+  c->fcoeff     = 1e4;
+  c->freg       = 1e-3;
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologySetType(rheo, "mui_thesis"));
+  PetscCall(SlumpRheologySetParameter(rheo, "mu_s", 0.32));
+  PetscCall(SlumpRheologySetParameter(rheo, "delta_mu", 0.28));
+  PetscCall(SlumpRheologySetParameter(rheo, "I0", 0.4));
+  PetscCall(SlumpRheologySetParameter(rheo, "d", 1.0 / PetscSqrtReal(a * grains)));
+  PetscCall(SlumpRheologySetParameter(rheo, "rho", 1.0));
+  PetscCall(SlumpRheologySetParameter(rheo, "gdot_min", 1e-2));
+  PetscCall(SlumpRheologySetParameter(rheo, "eta_min", 1e-4));
+  scene->tfinal           = 8.0;
+  scene->dtout            = 0.25;
+  scene->arrest_threshold = 0.0;
+  scene->mesh_n[0]        = (PetscInt)PetscFloorReal(c->L / h + 0.5);
+  scene->mesh_n[1]        = (PetscInt)PetscFloorReal(c->H / h + 0.5);
+  PetscCall(ColumnSetUp(scene, prob, comm, c, 1.0, 1e-3, 1e-4));
+  PetscCall(SlumpSceneAddParameter(scene, "grains", grains));
   PetscFunctionReturn(0);
 }
