@@ -206,6 +206,10 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     PetscCall(SlumpIntegratorCreate(prob, &ti));
     PetscCall(SlumpIntegratorSetTimes(ti, 0.0, scene->tfinal, scene->dtout));
     PetscCall(SlumpIntegratorSetArrestThreshold(ti, scene->arrest_threshold, PETSC_FALSE));
+    if (scene->rtol > 0 || scene->atol > 0) {
+      PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol));
+      PetscCall(SlumpIntegratorSetTolerances(ti, scene->rtol > 0 ? scene->rtol : rtol, scene->atol > 0 ? scene->atol : atol));
+    }
     PetscCall(SlumpIntegratorSetFromOptions(ti));
     PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol));
     PetscCall(SlumpIntegratorGetType(ti, &itype));

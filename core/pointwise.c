@@ -232,8 +232,15 @@ static inline void WallEvaluate(PetscInt dim, PetscInt Nf, const PetscInt uOff[]
   }
   w->m  = 1.0;
   w->dm = 0.0;
-  if (Nf > 2 && PetscRealPart(constants[SLUMP_C_MIX_EPS]) > 0) SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &w->m, &w->dm);
   w->law = (PetscInt)PetscRealPart(constants[SLUMP_C_WALL_LAW]);
+  /* two-phase: Navier slip, a no-slip penalty under the material, acts on
+     the material fraction, so that the band at the contact line slips (the
+     thesis' slip cell); Coulomb friction, proportional to the pressure,
+     acts like the material law, up to the zero contour */
+  if (Nf > 2 && PetscRealPart(constants[SLUMP_C_MIX_EPS]) > 0) {
+    if (w->law == SLUMP_WALL_NAVIER) SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &w->m, &w->dm);
+    else SlumpPwViscousFraction(u[uOff[Nf - 1]], constants, &w->m, &w->dm);
+  }
   if (w->law == SLUMP_WALL_NAVIER) {
     w->L = PetscRealPart(constants[SLUMP_C_WALL_COEFF]);
     w->P = w->dP = 0.0;

@@ -318,6 +318,15 @@ PetscErrorCode SlumpProblemSetTwoPhase(SlumpProblem prob, PetscReal rho_ambient,
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemSetTwoPhaseViscosityShift(SlumpProblem prob, PetscReal shift)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!prob->setup, prob->comm, PETSC_ERR_ORDER, "Set the two-phase mixing before SlumpProblemSetUp()");
+  PetscCheck(shift >= 0.0 && shift <= 1.0, prob->comm, PETSC_ERR_USER_INPUT, "-mixing_viscosity_shift must lie in [0, 1] (a fraction of the mixing half-width); got %g", (double)shift);
+  prob->mixShift = shift;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemGetTwoPhase(SlumpProblem prob, PetscBool *on, PetscReal *rho_ambient, PetscReal *eta_ambient, PetscReal *width)
 {
   PetscFunctionBeginUser;
@@ -340,6 +349,11 @@ PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob)
     PetscCall(PetscOptionsReal("-ambient_viscosity", "Viscosity of the ambient fluid (two-phase)", "SlumpProblemSetTwoPhase", ea, &ea, NULL));
     PetscCall(PetscOptionsReal("-mixing_width", "Half-width of the smoothed Heaviside, in mesh cells (two-phase)", "SlumpProblemSetTwoPhase", w, &w, NULL));
     PetscCall(SlumpProblemSetTwoPhase(prob, ra, ea, w));
+    {
+      PetscReal sh = prob->mixShift;
+      PetscCall(PetscOptionsReal("-mixing_viscosity_shift", "Shift of the viscosity's Heaviside into the ambient fluid, as a fraction of the half-width (1: the material law holds up to the zero contour)", "SlumpProblemSetTwoPhaseViscosityShift", sh, &sh, NULL));
+      PetscCall(SlumpProblemSetTwoPhaseViscosityShift(prob, sh));
+    }
   }
   PetscCall(PetscOptionsRangeInt("-velocity_degree", "Polynomial degree of the velocity", "", prob->velocityDegree, &prob->velocityDegree, NULL, 2, 4));
   {
@@ -612,7 +626,8 @@ PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
   if (prob->twoPhase) {
     prob->constants[SLUMP_C_MIX_RHO] = prob->rhoAmbient;
     prob->constants[SLUMP_C_MIX_ETA] = prob->etaAmbient;
-    prob->constants[SLUMP_C_MIX_EPS] = prob->mixEps;
+    prob->constants[SLUMP_C_MIX_EPS]   = prob->mixEps;
+    prob->constants[SLUMP_C_MIX_SHIFT] = prob->mixShift * prob->mixEps;
   }
   if (prob->wallFriction) {
     prob->constants[SLUMP_C_WALL_LAW]   = prob->wallLaw;
@@ -918,16 +933,17 @@ PetscErrorCode SlumpKSPSetDirect(KSP ksp)
 #if defined(PETSC_HAVE_MUMPS)
   PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   {
-    /* MUMPS's workspace +200 % (ICNTL(14), its default is +20 %) unless the
-       user sets it: with density ratios of 1e-3 the delayed pivots overflow
-       the default estimate (INFOG(1) = -9) */
+    /* MUMPS's workspace +1000 % (ICNTL(14), its default is +20 %) unless
+       the user sets it: with density ratios of 1e-3 the delayed pivots
+       overflow the default estimate (INFOG(1) = -9); +200 % was still short
+       for column_collapse's consistent initialisation on 8e3 cells */
     const char *prefix;
     char        name[256];
     PetscBool   has;
     PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
     PetscCall(PetscSNPrintf(name, sizeof(name), "-%smat_mumps_icntl_14", prefix ? prefix : ""));
     PetscCall(PetscOptionsHasName(NULL, NULL, name, &has));
-    if (!has) PetscCall(PetscOptionsSetValue(NULL, name, "200"));
+    if (!has) PetscCall(PetscOptionsSetValue(NULL, name, "1000"));
   }
 #endif
   PetscCall(KSPSetFromOptions(ksp));

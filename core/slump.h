@@ -64,7 +64,8 @@ enum {
   SLUMP_C_WALL_LAW   = SLUMP_C_MIX_RHO + 3, /* wall friction: 0 Navier, 1 Coulomb          */
   SLUMP_C_WALL_COEFF = SLUMP_C_MIX_RHO + 4, /* wall friction: beta or mu_w                 */
   SLUMP_C_WALL_REG   = SLUMP_C_MIX_RHO + 5, /* wall friction: Coulomb velocity scale delta */
-  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 6
+  SLUMP_C_MIX_SHIFT  = SLUMP_C_MIX_RHO + 6, /* two-phase: viscosity Heaviside shift (x w)  */
+  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 7
 };
 #define SLUMP_MAX_FIELDS 3
 
@@ -154,6 +155,13 @@ PETSC_EXTERN PetscErrorCode SlumpProblemSetPressureReference(SlumpProblem prob, 
    diagnostics then measure the material: kinetic energy and dissipation of
    the material, shear rates and yielded fraction averaged over its area. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetTwoPhase(SlumpProblem prob, PetscReal rho_ambient, PetscReal eta_ambient, PetscReal width);
+/* Shift the Heaviside that weighs the material's viscosity by shift * w into
+   the ambient fluid (0 <= shift <= 1; default 0: the density's): with 1 the
+   material law holds in the whole band up to the zero contour, as
+   pressure-dependent laws need (a fraction m < 1 of a friction law would
+   scale its friction coefficient by m in the band). Wall friction uses the
+   same fraction. Option -mixing_viscosity_shift. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetTwoPhaseViscosityShift(SlumpProblem prob, PetscReal shift);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetTwoPhase(SlumpProblem prob, PetscBool *on, PetscReal *rho_ambient, PetscReal *eta_ambient, PetscReal *width);
 /* Attach the extra field (before SlumpProblemSetUp); the problem owns ctx
    and calls ops->destroy. */

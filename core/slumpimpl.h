@@ -60,7 +60,7 @@ struct _n_SlumpProblem {
   void         *extraCtx;
   /* two-phase mixing with the level set */
   PetscBool     twoPhase;
-  PetscReal     rhoAmbient, etaAmbient, mixWidth, mixEps;
+  PetscReal     rhoAmbient, etaAmbient, mixWidth, mixEps, mixShift;
   PetscReal     materialArea; /* of the last diagnostics pass */
   /* wall friction (SlumpProblemAddFrictionBC) */
   PetscBool     wallFriction;

@@ -144,6 +144,18 @@ static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar 
     for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = de_dp * gd[c * dim + d] - (c == d ? 1.0 : 0.0);
 }
 
+/* The fraction that weighs the material's viscosity: the material fraction
+   of phi - s, s = constants[SLUMP_C_MIX_SHIFT] >= 0 (0: the density's). With
+   s = w the material law holds in the whole band up to the zero contour:
+   pressure-dependent laws (mu(I), Drucker-Prager, Coulomb walls) would
+   otherwise see their friction multiplied by m < 1 there while the weight
+   and the pressure are m's too, and the band would slide below the angle
+   of repose. */
+static inline void SlumpPwViscousFraction(PetscScalar phi, const PetscScalar constants[], PetscReal *m, PetscReal *dm)
+{
+  SlumpPwMaterialFraction(PetscRealPart(phi) - PetscRealPart(constants[SLUMP_C_MIX_SHIFT]), constants, m, dm);
+}
+
 /* Two-phase: d f1[c,d] / d phi = dm/dphi (eta_model - eta_ambient) gd_cd. */
 static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScalar p, PetscScalar phi, const PetscReal x[], const PetscScalar constants[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g2[])
 {
@@ -151,7 +163,7 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
   PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty, m, dm;
   for (PetscInt i = 0; i < dim * dim; ++i) g2[i] = 0.0;
   if (jacmode == 1) return;
-  SlumpPwMaterialFraction(phi, constants, &m, &dm);
+  SlumpPwViscousFraction(phi, constants, &m, &dm);
   if (dm == 0.0) return;
   k(&constants[SLUMP_C_RHEO], g, PetscRealPart(p), x, &eta, &de_dg, &de_dp, &ty);
   for (PetscInt i = 0; i < dim * dim; ++i) g2[i] = dm * (eta - PetscRealPart(constants[SLUMP_C_MIX_ETA])) * gd[i];
@@ -163,7 +175,7 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
 #define SLUMP_PW_JACMODE (PetscInt)PetscRealPart(constants[SLUMP_C_JACMODE])
 #define SLUMP_PW_MIX \
   PetscReal m_, dm_; \
-  SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &m_, &dm_); \
+  SlumpPwViscousFraction(u[uOff[Nf - 1]], constants, &m_, &dm_); \
   const PetscReal ea_ = PetscRealPart(constants[SLUMP_C_MIX_ETA]); \
   (void)ea_
 #define SLUMP_RHEOLOGY_DEFINE_POINTWISE(NAME, KERNEL) \
@@ -248,6 +260,7 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
     SLUMP_PW_MIX; \
     PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
     KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
+    SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &m_, &dm_); /* an area share, like the other averages */ \
     f[0] = (eta * g > ty) ? m_ : 0.0; \
   } \
   static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded, NAME##_ap_f1_u, NAME##_ap_g3_uu, \

@@ -1149,6 +1149,52 @@ def test_dam_break():
         fail("energy imbalance %.3f of the released energy > 10 %%" % imbalance)
 
 
+def test_column_collapse():
+    """Granular column collapse, a = 0.5 (mu(I) with Lagree et al.'s
+    parameters, Coulomb floor mu_w = 0.6, cells of 0.1 h_i), run until the
+    mean shear rate of the material falls below 0.05 (root-found; the run
+    stops there). Checks against REFERENCES.md: (1) the run-out
+    (r_f - r_i)/r_i within 15 % of the thesis' fit 1.72 a^0.97 = 0.878;
+    (2) the height on the axis within 10 % of h_i (the deposit is a truncated
+    cone whose top stays at h_i); (3) the arrest time lies between the
+    published collapse time 3 sqrt(h_i/g) and the scene's final time 8;
+    (4) the kinetic energy at arrest is below 1 % of its peak; (5) the
+    material volume drifts by at most 2 %; (6) the deposit profile
+    (deposit.csv) never rises by more than a hundredth of h_i downstream and
+    ends within a cell of the front."""
+    w = work("column_collapse")
+    run("column_collapse", ["-cell_size", "0.1", "-arrest_stop", "first", "-output_fields", "0"], w)
+    s = summary(w)
+    ser = series(w)
+    with open(os.path.join(w, "deposit.csv")) as f:
+        dep = [(float(r["x"]), float(r["height"])) for r in csv.DictReader(f)]
+    ta = s.get("t_arrest", -1.0)
+    kmax = max(r["kinetic_energy"] for r in ser)
+    kend = ser[-1]["kinetic_energy"]
+    fit = 1.72 * 0.5 ** 0.97
+    print("column_collapse a = 0.5, 52 x 13 cells: run-out (r_f - r_i)/r_i = %.4f (thesis fit %.4f, %+.1f %%), axis height %.4f h_i, "
+          "arrest at t = %.3f (mean |gdot| < 0.05), KE %.3e at arrest / peak %.3e, volume drift max %.3e, %d steps, %.1f s"
+          % (s["runout_over_ri"], fit, 100 * (s["runout_over_ri"] / fit - 1), s["height_axis_over_hi"], ta, kend, kmax, s["volume_drift_max"], s["steps"], s["wall_time"]))
+    if abs(s["runout_fit_thesis"] - fit) > 1e-6:
+        fail("the scene's run-out fit %g differs from 1.72 a^0.97 = %g" % (s["runout_fit_thesis"], fit))
+    if not abs(s["runout_over_ri"] / fit - 1) <= 0.15:
+        fail("run-out %.4f is not within 15 %% of the fit %.4f" % (s["runout_over_ri"], fit))
+    if not 0.9 <= s["height_axis_over_hi"] <= 1.001:
+        fail("axis height %.4f h_i outside [0.9, 1.001]" % s["height_axis_over_hi"])
+    if not 3.0 <= ta <= 8.0:
+        fail("arrest time %g outside [3, 8]" % ta)
+    if not kend <= 0.01 * kmax:
+        fail("kinetic energy at arrest %.3e > 1 %% of its peak %.3e" % (kend, kmax))
+    if not s["volume_drift_max"] <= 0.02:
+        fail("material volume drift %.3e > 2 %%" % s["volume_drift_max"])
+    for (x0, h0), (x1, h1) in zip(dep, dep[1:]):
+        if h1 > h0 + 0.01:
+            fail("the deposit rises from %.4f at x = %.3f to %.4f at x = %.3f" % (h0, x0, h1, x1))
+    last = max((x for x, h in dep if h > 0), default=0.0)
+    if not abs(last - s["front"]) <= 0.1 + 1e-9:
+        fail("the deposit ends at x = %.3f, the front is at %.3f" % (last, s["front"]))
+
+
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
 
 if __name__ == "__main__":

@@ -161,6 +161,7 @@ static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm 
   PetscCall(SlumpSceneAddParameter(scene, "aspect_ratio", c->hi / c->ri));
   PetscCall(SlumpSceneAddParameter(scene, "floor", (PetscReal)fl));
   if (c->floor >= FLOOR_NAVIER) PetscCall(SlumpSceneAddParameter(scene, "floor_friction", c->fcoeff));
+  if (c->floor == FLOOR_COULOMB) PetscCall(SlumpSceneAddParameter(scene, "floor_friction_delta", c->freg));
   PetscFunctionReturn(0);
 }
 
@@ -263,9 +264,9 @@ PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene scene, SlumpProblem pr
   c->runout_fit = a <= 7 ? 1.72 * PetscPowReal(a, 0.97) : 2.96 * PetscPowReal(a, 0.69);
   c->L          = PetscCeilReal((c->ri * (1.0 + 1.5 * c->runout_fit) + 0.5) / h) * h;
   c->H          = PetscCeilReal(1.25 / h) * h;
-  c->floor      = FLOOR_NAVIER;
-  c->fcoeff     = 1e4;
-  c->freg       = 1e-3;
+  c->floor      = FLOOR_COULOMB;
+  c->fcoeff     = 0.6;
+  c->freg       = 1e-2;
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologySetType(rheo, "mui_thesis"));
   PetscCall(SlumpRheologySetParameter(rheo, "mu_s", 0.32));
@@ -277,9 +278,13 @@ PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene scene, SlumpProblem pr
   PetscCall(SlumpRheologySetParameter(rheo, "eta_min", 1e-4));
   scene->tfinal           = 8.0;
   scene->dtout            = 0.25;
-  scene->arrest_threshold = 0.0;
+  scene->arrest_threshold = 5e-2; /* mean |gdot| peaks at ~0.7 and creeps at ~2.5 gdot_min once arrested */
+  scene->rtol             = 1e-3;
+  scene->atol             = 1e-4;
   scene->mesh_n[0]        = (PetscInt)PetscFloorReal(c->L / h + 0.5);
   scene->mesh_n[1]        = (PetscInt)PetscFloorReal(c->H / h + 0.5);
+  /* the friction law holds up to the zero contour (see SlumpProblemSetTwoPhaseViscosityShift) */
+  PetscCall(SlumpProblemSetTwoPhaseViscosityShift(prob, 1.0));
   PetscCall(ColumnSetUp(scene, prob, comm, c, 1.0, 1e-3, 1e-4));
   PetscCall(SlumpSceneAddParameter(scene, "grains", grains));
   PetscFunctionReturn(0);
