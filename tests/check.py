@@ -1195,6 +1195,30 @@ def test_column_collapse():
         fail("the deposit ends at x = %.3f, the front is at %.3f" % (last, s["front"]))
 
 
+def test_stability_column_collapse_air():
+    """Hard ratios over a collapse: column_collapse a = 0.5 with the ambient
+    viscosity lowered to 1e-6 (1e-6 of the rheology's floor-free viscosity
+    scale mu_s p/gdot_min ~ 10 near the floor, 1e-2 of eta_min) and the
+    density ratio 1e-3, cells of 0.1 h_i. It must run to arrest (mean shear
+    rate < 0.05, root-found, t in [3, 8]) without an unrecoverable failure,
+    keep the material volume within 2 %, and land within 15 % of the thesis'
+    run-out fit, like the default air."""
+    w = work("stability_column_collapse_air")
+    run("column_collapse", ["-cell_size", "0.1", "-ambient_viscosity", "1e-6", "-arrest_stop", "first", "-output_fields", "0"], w)
+    s = summary(w)
+    fit = 1.72 * 0.5 ** 0.97
+    ta = s.get("t_arrest", -1.0)
+    print("column_collapse a = 0.5, air viscosity 1e-6, density 1e-3: arrest at t = %.3f, run-out %.4f (fit %.4f), axis height %.4f, "
+          "volume drift max %.3e, %d steps, %d error-test and %d convergence failures, %.1f s"
+          % (ta, s["runout_over_ri"], fit, s["height_axis_over_hi"], s["volume_drift_max"], s["steps"], s["err_test_fails"], s["conv_fails"], s["wall_time"]))
+    if not 3.0 <= ta <= 8.0:
+        fail("arrest time %g outside [3, 8]" % ta)
+    if not s["volume_drift_max"] <= 0.02:
+        fail("material volume drift %.3e > 2 %%" % s["volume_drift_max"])
+    if not abs(s["runout_over_ri"] / fit - 1) <= 0.15:
+        fail("run-out %.4f is not within 15 %% of the fit %.4f" % (s["runout_over_ri"], fit))
+
+
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
 
 if __name__ == "__main__":
