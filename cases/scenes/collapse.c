@@ -17,8 +17,11 @@
  *   (-ambient_density, -ambient_viscosity), Papanastasiou m = 1e3 by
  *   default; box 4 x 1.5 h_i; no slip on the floor (-floor slip|noslip).
  *
+ * column_collapse: the mu(I) columns of Lagree et al. (below).
+ *
  * Options: -column_width r_i, -column_height h_i, -box_length L,
- * -box_height H, -floor slip|noslip. The interface record (interface.csv)
+ * -box_height H, -floor slip|noslip|navier|coulomb, -floor_friction,
+ * -floor_friction_delta. The interface record (interface.csv)
  * logs the front x_max and the material height on the symmetry axis (x = 0)
  * and on the right wall (x = L). Results: the initial and final front and
  * axis height, the volume drift, the potential energy released. */
@@ -231,9 +234,13 @@ PetscErrorCode SlumpSceneCreate_BinghamDamBreak(SlumpScene scene, SlumpProblem p
    h_i, sqrt(g h_i), sqrt(h_i/g) and the grain density: h_i = 1,
    r_i = 1/a, d = 1/sqrt(a N) for N grains; mu_s = 0.32, delta_mu = 0.28,
    I0 = 0.4; ||gdot||_min = 1e-2, eta_min = 1e-4 (the thesis' choices);
-   air density 1e-3, viscosity 1e-4. The floor is rough: Navier friction
-   beta m(phi) with beta = 1e4 (no slip under the material by penalty, the
-   air and the contact line slip); -floor noslip|slip|coulomb for others.
+   air density 1e-3, viscosity 1e-4. The friction law holds up to the zero
+   contour (viscosity Heaviside shifted by one half-width). The floor is
+   rough: regularised Coulomb friction mu_w = mu_s + delta_mu = 0.6 (as
+   strong as the material at its most mobile), delta = 1e-2; -floor
+   noslip|slip|navier and -floor_friction, -floor_friction_delta for others.
+   IDA tolerances rtol 1e-3, atol 1e-4; arrest when the material's mean
+   shear rate falls below 0.05 (it creeps at ~2.5 gdot_min once at rest).
    The box is long enough for 1.5 times the thesis' run-out fit
    (r_f - r_i)/r_i = 1.72 a^0.97 (a <= 7), 2.96 a^0.69 (a > 7). */
 PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
