@@ -204,7 +204,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   if (!scene->steady) {
     PetscCall(SlumpIntegratorCreate(prob, &ti));
-    PetscCall(SlumpIntegratorSetTimes(ti, 0.0, scene->tfinal, scene->dtout));
+    PetscCall(SlumpIntegratorSetTimes(ti, scene->t0, scene->tfinal, scene->dtout));
     PetscCall(SlumpIntegratorSetArrestThreshold(ti, scene->arrest_threshold, PETSC_FALSE));
     if (scene->rtol > 0 || scene->atol > 0) {
       PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol));
@@ -254,7 +254,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   PetscCall(SlumpProblemGetDM(prob, &dm));
   PetscCall(SlumpProblemCreateVector(prob, &X));
   PetscCall(PetscObjectSetName((PetscObject)X, "solution"));
-  PetscCall(SlumpProblemProjectInitialState(prob, 0.0, X));
+  PetscCall(SlumpProblemProjectInitialState(prob, scene->t0, X));
   if (scene->initial) PetscCall(scene->initial(scene, prob, X));
   {
     SlumpLevelSet ls;
@@ -263,7 +263,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
       char path[PETSC_MAX_PATH_LEN];
       PetscCall(PetscSNPrintf(path, sizeof(path), "%s/interface.csv", dir));
       PetscCall(SlumpLevelSetSetLog(ls, path));
-      PetscCall(SlumpLevelSetRecordVolume(ls, 0.0, X));
+      PetscCall(SlumpLevelSetRecordVolume(ls, scene->t0, X));
     }
   }
   PetscCall(PetscMemzero(&stats, sizeof(stats)));

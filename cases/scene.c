@@ -25,6 +25,7 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_LevelSetRotation(SlumpScene, SlumpP
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DamBreak(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_BinghamDamBreak(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_ColumnChute(SlumpScene, SlumpProblem, MPI_Comm);
 
 PetscErrorCode SlumpSceneRegister(const char name[], const char description[], SlumpSceneCreateFn create)
 {
@@ -53,7 +54,8 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("levelset_rotation", "circle or slotted disc in a rotating field (prescribed velocity): level-set transport and reinitialisation", SlumpSceneCreate_LevelSetRotation));
   PetscCall(SlumpSceneRegister("dam_break", "Newtonian column collapse with air (two-phase, level set): box 0.42 x 0.44 m, column 0.114 m (Cruchaga et al.)", SlumpSceneCreate_DamBreak));
   PetscCall(SlumpSceneRegister("bingham_dam_break", "Bingham column collapse with air (Liu et al., Riber's thesis): Re = 1e-3, Bn by -bn, to arrest", SlumpSceneCreate_BinghamDamBreak));
-  PetscCall(SlumpSceneRegister("column_collapse", "Granular column collapse, mu(I) with air (Lagree et al. 2011, Riber's thesis): aspect ratio by -aspect_ratio (0.5), rough floor", SlumpSceneCreate_ColumnCollapse));
+  PetscCall(SlumpSceneRegister("column_collapse", "Granular column collapse, mu(I) with air (Lagree et al. 2011, Riber's thesis): aspect ratio by -aspect_ratio (0.5), Coulomb floor mu_w 0.6", SlumpSceneCreate_ColumnCollapse));
+  PetscCall(SlumpSceneRegister("column_chute", "The mu(I) column of column_collapse released from -release_height h_r (0.5): starts at the impact, t = sqrt(2 h_r/g), velocity sqrt(2 g h_r) (Riber's thesis sec. 4.3.3, in 2-D)", SlumpSceneCreate_ColumnChute));
   PetscCall(SlumpSceneRegister("mms_stokes", "manufactured Stokes solution on the unit square (Dirichlet + traction); spatial orders", SlumpSceneCreate_MMSStokes));
   PetscFunctionReturn(0);
 }

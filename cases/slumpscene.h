@@ -7,12 +7,13 @@
 #include "slumprheology.h"
 #include "slumptimeint.h"
 
-#define SLUMP_SCENE_MAX_ITEMS 16
+#define SLUMP_SCENE_MAX_ITEMS 24
 
 typedef struct _n_SlumpScene *SlumpScene;
 struct _n_SlumpScene {
   char      name[64];
   PetscBool steady;               /* steady state (KINSOL) or time integration */
+  PetscReal t0;                   /* initial time (0 unless the scene starts later, e.g. at an impact) */
   PetscReal tfinal, dtout;        /* defaults for -time_final, -time_output_dt */
   PetscReal arrest_threshold;     /* default for -arrest_mean_shear_rate       */
   PetscReal rtol, atol;           /* defaults for -time_rtol, -time_atol (0: the integrator's) */

@@ -243,6 +243,14 @@ PetscErrorCode SlumpReinitRegisterAll(void)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpLevelSetSetReinitEvery(SlumpLevelSet ls, PetscInt n)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n >= 1, ls->comm, PETSC_ERR_USER_INPUT, "-reinit_every must be >= 1 (steps); got %" PetscInt_FMT, n);
+  ls->reinit_every = n;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpLevelSetSetReinitType(SlumpLevelSet ls, const char name[])
 {
   PetscFunctionBeginUser;

@@ -52,6 +52,8 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetCreate(SlumpProblem prob, SlumpPointFn 
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLevelSet(SlumpProblem prob, SlumpLevelSet *ls);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetReinitType(SlumpLevelSet ls, const char name[]);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetGetReinitType(SlumpLevelSet ls, const char **name);
+/* Between-step reinitialisation every n accepted steps (default 20; -reinit_every). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetReinitEvery(SlumpLevelSet ls, PetscInt n);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls);
 /* Interface record, one row per accepted step: t, material volume, drift,
    reinitialisations so far, the material's extent x_min, x_max, y_max and

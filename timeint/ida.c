@@ -84,14 +84,17 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
       PetscCall(KSPSolve(ksp, F, W));
       PetscCall(KSPGetConvergedReason(ksp, &reason));
       PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The divergence-free projection of the initial velocity failed (KSP reason %s)", KSPConvergedReasons[reason]);
-      PetscCall(VecGetSubVector(W, isp, &subw));
-      PetscCall(VecZeroEntries(subw));
-      PetscCall(VecRestoreSubVector(W, isp, &subw));
-      PetscCall(VecNorm(W, NORM_2, &ndu));
-      PetscCall(VecNorm(X, NORM_2, &nu));
+      /* only the velocity moves: the pressure part is the impulse, and an
+         extra field's part (a level set's phi_t) is not a correction */
+      PetscCall(VecGetSubVector(W, isu, &subw));
+      PetscCall(VecGetSubVector(X, isu, &sub));
+      PetscCall(VecNorm(subw, NORM_2, &ndu));
+      PetscCall(VecNorm(sub, NORM_2, &nu));
       /* a correction at round-off level is noise (and differs between
          partitions): keep the velocity as it is then */
-      if (ndu > 1e-12 * nu) PetscCall(VecAXPY(X, 1.0, W));
+      if (ndu > 1e-12 * nu) PetscCall(VecAXPY(sub, 1.0, subw));
+      PetscCall(VecRestoreSubVector(X, isu, &sub));
+      PetscCall(VecRestoreSubVector(W, isu, &subw));
       PetscCall(PetscInfo(NULL, "divergence-free projection of the initial velocity: |du|/|u| = %g (%s)\n", (double)(nu > 0 ? ndu / nu : ndu), ndu > 1e-12 * nu ? "applied" : "round-off, not applied"));
     }
   }

@@ -36,6 +36,8 @@ typedef struct {
   FloorKind floor;
   PetscReal fcoeff, freg; /* floor friction: beta or mu_w, Coulomb delta */
   PetscReal runout_fit;   /* column_collapse: the thesis' fit of (r_f - r_i)/r_i (0: none) */
+  PetscInt  reinit_every; /* between-step reinitialisation every n steps (0: the level set's default) */
+  PetscReal cell;         /* target cell size of the default mesh (0: the scene's mesh_n as set) */
 } ColumnCtx;
 
 /* signed distance to the column [0, ri] x [0, hi] seen from the box: the
@@ -117,6 +119,10 @@ static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm 
   PetscCheck(c->L > c->ri && c->H > c->hi, comm, PETSC_ERR_USER_INPUT, "The box (-box_length %g, -box_height %g) must be longer and higher than the column (%g x %g)", (double)c->L, (double)c->H, (double)c->ri, (double)c->hi);
   upper[0] = c->L;
   upper[1] = c->H;
+  if (c->cell > 0) { /* after -box_length/-box_height: square cells of the target size */
+    scene->mesh_n[0] = (PetscInt)PetscMax(1.0, PetscFloorReal(c->L / c->cell + 0.5));
+    scene->mesh_n[1] = (PetscInt)PetscMax(1.0, PetscFloorReal(c->H / c->cell + 0.5));
+  }
   PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA | SLUMP_EFFECT_CONVECTION | SLUMP_EFFECT_BODY_FORCE | SLUMP_EFFECT_FREE_SURFACE));
   PetscCall(SlumpProblemSetDensity(prob, rho));
@@ -149,6 +155,7 @@ static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm 
   PetscCall(SlumpProblemSetTwoPhase(prob, rho_a, eta_a, 1.5));
   PetscCall(SlumpLevelSetCreate(prob, ColumnPhi, c, &ls));
   PetscCall(SlumpLevelSetSetReinitType(ls, "redistance"));
+  if (c->reinit_every > 0) PetscCall(SlumpLevelSetSetReinitEvery(ls, c->reinit_every));
   /* the transport loses volume at first order in h (42 x 44 cells: -2 % by
      t = 0.2 s in dam_break); restore it after each reinitialisation */
   PetscCall(SlumpLevelSetSetVolumeCorrection(ls, PETSC_TRUE));
@@ -241,21 +248,15 @@ PetscErrorCode SlumpSceneCreate_BinghamDamBreak(SlumpScene scene, SlumpProblem p
    noslip|slip|navier and -floor_friction, -floor_friction_delta for others.
    IDA tolerances rtol 1e-3, atol 1e-4; arrest when the material's mean
    shear rate falls below 0.05 (it creeps at ~2.5 gdot_min once at rest).
-   The box is long enough for 1.5 times the thesis' run-out fit
-   (r_f - r_i)/r_i = 1.72 a^0.97 (a <= 7), 2.96 a^0.69 (a > 7). */
-PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+   The box is long enough for `margin` times the thesis' run-out fit
+   (r_f - r_i)/r_i = 1.72 a^0.97 (a <= 7), 2.96 a^0.69 (a > 7), taken at the
+   effective aspect ratio a_eff (a, or (h_i + h_r)/r_i for a chute):
+   margin 1.5 for a collapse, 3 for a chute (in 2-D a column dropped from
+   h_r = h_i at a = 1 reached the end of a box of margin 1.5). */
+static PetscErrorCode MuIColumn(SlumpScene scene, SlumpProblem prob, MPI_Comm comm, ColumnCtx *c, PetscReal a, PetscReal grains, PetscReal h, PetscReal a_eff, PetscReal margin)
 {
-  ColumnCtx    *c;
   SlumpRheology rheo;
-  PetscReal     a = 0.5, grains = 0.0, h = 0.05;
   PetscFunctionBeginUser;
-  PetscCall(PetscNew(&c));
-  scene->ctx = c;
-  PetscOptionsBegin(comm, NULL, "Scene column_collapse", "");
-  PetscCall(PetscOptionsReal("-aspect_ratio", "Aspect ratio a = h_i/r_i of the column", "", a, &a, NULL));
-  PetscCall(PetscOptionsReal("-grains", "Number of grains N of the discrete reference (grain diameter 1/sqrt(a N); default: 3407, 6041, 6036 for a = 0.5, 1.42, 6.26, else 6000)", "", grains, &grains, NULL));
-  PetscCall(PetscOptionsReal("-cell_size", "Target cell size of the default mesh, in units of h_i", "", h, &h, NULL));
-  PetscOptionsEnd();
   PetscCheck(a > 0, comm, PETSC_ERR_USER_INPUT, "-aspect_ratio must be positive; got %g", (double)a);
   PetscCheck(grains >= 0, comm, PETSC_ERR_USER_INPUT, "-grains must be positive; got %g", (double)grains);
   PetscCheck(h > 0, comm, PETSC_ERR_USER_INPUT, "-cell_size must be positive; got %g", (double)h);
@@ -269,11 +270,14 @@ PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene scene, SlumpProblem pr
   c->ri         = 1.0 / a;
   c->g          = 1.0;
   c->runout_fit = a <= 7 ? 1.72 * PetscPowReal(a, 0.97) : 2.96 * PetscPowReal(a, 0.69);
-  c->L          = PetscCeilReal((c->ri * (1.0 + 1.5 * c->runout_fit) + 0.5) / h) * h;
-  c->H          = PetscCeilReal(1.25 / h) * h;
-  c->floor      = FLOOR_COULOMB;
-  c->fcoeff     = 0.6;
-  c->freg       = 1e-2;
+  {
+    const PetscReal fit_eff = a_eff <= 7 ? 1.72 * PetscPowReal(a_eff, 0.97) : 2.96 * PetscPowReal(a_eff, 0.69);
+    c->L = PetscCeilReal((c->ri * (1.0 + margin * fit_eff) + 0.5) / h) * h;
+  }
+  c->H      = PetscCeilReal(1.25 / h) * h;
+  c->floor  = FLOOR_COULOMB;
+  c->fcoeff = 0.6;
+  c->freg   = 1e-2;
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologySetType(rheo, "mui_thesis"));
   PetscCall(SlumpRheologySetParameter(rheo, "mu_s", 0.32));
@@ -283,16 +287,99 @@ PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene scene, SlumpProblem pr
   PetscCall(SlumpRheologySetParameter(rheo, "rho", 1.0));
   PetscCall(SlumpRheologySetParameter(rheo, "gdot_min", 1e-2));
   PetscCall(SlumpRheologySetParameter(rheo, "eta_min", 1e-4));
-  scene->tfinal           = 8.0;
+  scene->tfinal           = scene->t0 + 8.0;
   scene->dtout            = 0.25;
   scene->arrest_threshold = 5e-2; /* mean |gdot| peaks at ~0.7 and creeps at ~2.5 gdot_min once arrested */
   scene->rtol             = 1e-3;
   scene->atol             = 1e-4;
-  scene->mesh_n[0]        = (PetscInt)PetscFloorReal(c->L / h + 0.5);
-  scene->mesh_n[1]        = (PetscInt)PetscFloorReal(c->H / h + 0.5);
+  c->cell                 = h;
   /* the friction law holds up to the zero contour (see SlumpProblemSetTwoPhaseViscosityShift) */
   PetscCall(SlumpProblemSetTwoPhaseViscosityShift(prob, 1.0));
   PetscCall(ColumnSetUp(scene, prob, comm, c, 1.0, 1e-3, 1e-4));
   PetscCall(SlumpSceneAddParameter(scene, "grains", grains));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+{
+  ColumnCtx *c;
+  PetscReal  a = 0.5, grains = 0.0, h = 0.05;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  scene->ctx = c;
+  PetscOptionsBegin(comm, NULL, "Scene column_collapse", "");
+  PetscCall(PetscOptionsReal("-aspect_ratio", "Aspect ratio a = h_i/r_i of the column", "", a, &a, NULL));
+  PetscCall(PetscOptionsReal("-grains", "Number of grains N of the discrete reference (grain diameter 1/sqrt(a N); default: 3407, 6041, 6036 for a = 0.5, 1.42, 6.26, else 6000)", "", grains, &grains, NULL));
+  PetscCall(PetscOptionsReal("-cell_size", "Target cell size of the default mesh, in units of h_i", "", h, &h, NULL));
+  PetscOptionsEnd();
+  PetscCall(MuIColumn(scene, prob, comm, c, a, grains, h, a, 1.5));
+  PetscFunctionReturn(0);
+}
+
+/* column_chute: the mu(I) column of column_collapse released from a height
+   h_r above the floor (Riber's thesis sec. 4.3.3, in 2-D). The free fall is
+   not simulated: the run starts at the impact, t0 = sqrt(2 h_r/g), with the
+   column on the floor and the material moving down at the impact velocity
+   v = sqrt(2 g h_r) (the air at rest). The consistent initialisation
+   projects that velocity onto the divergence-free fields that respect the
+   walls, with the density as weight: this is the impulsive pressure of the
+   impact, and the kinetic energy it removes is the energy lost at impact.
+   Options: -release_height h_r (in h_i; default 0.5), -aspect_ratio (1),
+   -grains, -cell_size as column_collapse. Results add the impact velocity,
+   the impact time and the kinetic energy just before and just after the
+   impact; run-out_fit_thesis is the collapse fit at a (not a_r). */
+typedef struct {
+  ColumnCtx c; /* first: the collapse routines see a ColumnCtx */
+  PetscReal hr, v;
+} ChuteCtx;
+
+static PetscErrorCode ChuteVelocity(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
+{
+  const ChuteCtx *ch = (const ChuteCtx *)ctx;
+  PetscScalar     phi;
+  PetscCall(ColumnPhi(dim, t, x, 1, &phi, (void *)&ch->c));
+  u[0] = 0.0;
+  u[1] = PetscRealPart(phi) < 0 ? -ch->v : 0.0;
+  return 0;
+}
+
+static PetscErrorCode ChuteResults(SlumpScene scene, SlumpProblem prob, PetscReal t, Vec X)
+{
+  ChuteCtx *ch = (ChuteCtx *)scene->ctx;
+  PetscFunctionBeginUser;
+  PetscCall(Results(scene, prob, t, X));
+  PetscCall(SlumpSceneAddResult(scene, "impact_velocity", ch->v));
+  PetscCall(SlumpSceneAddResult(scene, "t_impact", scene->t0));
+  PetscCall(SlumpSceneAddResult(scene, "kinetic_energy_before_impact", 0.5 * ch->c.ri * ch->c.hi * ch->v * ch->v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneCreate_ColumnChute(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+{
+  ChuteCtx *ch;
+  PetscReal a = 1.0, grains = 0.0, h = 0.05, hr = 0.5;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&ch));
+  scene->ctx = ch;
+  PetscOptionsBegin(comm, NULL, "Scene column_chute", "");
+  PetscCall(PetscOptionsReal("-aspect_ratio", "Aspect ratio a = h_i/r_i of the column", "", a, &a, NULL));
+  PetscCall(PetscOptionsReal("-release_height", "Release height h_r of the column's base above the floor, in units of h_i", "", hr, &hr, NULL));
+  PetscCall(PetscOptionsReal("-grains", "Number of grains N (grain diameter 1/sqrt(a N); default 6000)", "", grains, &grains, NULL));
+  PetscCall(PetscOptionsReal("-cell_size", "Target cell size of the default mesh, in units of h_i", "", h, &h, NULL));
+  PetscOptionsEnd();
+  PetscCheck(hr >= 0, comm, PETSC_ERR_USER_INPUT, "-release_height must be >= 0; got %g", (double)hr);
+  PetscCheck(a > 0, comm, PETSC_ERR_USER_INPUT, "-aspect_ratio must be positive; got %g", (double)a);
+  ch->hr    = hr;
+  ch->v     = PetscSqrtReal(2.0 * hr); /* g = 1 */
+  scene->t0 = PetscSqrtReal(2.0 * hr);
+  /* the spreading film thins fast after the impact: every 20 steps the
+     volume drifted by 2.1 % (a = 1, h_r = 0.25, cells of about 0.1), every
+     10 by 1.7 % */
+  ch->c.reinit_every = 10;
+  PetscCall(MuIColumn(scene, prob, comm, &ch->c, a, grains, h, (1.0 + hr) * a, 3.0));
+  if (hr > 0) PetscCall(SlumpProblemSetInitialVelocity(prob, ChuteVelocity, ch));
+  scene->results = ChuteResults;
+  PetscCall(SlumpSceneAddParameter(scene, "release_height", hr));
+  PetscCall(SlumpSceneAddParameter(scene, "aspect_ratio_release", (1.0 + hr) * a));
   PetscFunctionReturn(0);
 }
