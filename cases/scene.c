@@ -26,6 +26,7 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DamBreak(SlumpScene, SlumpProblem, 
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_BinghamDamBreak(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_ColumnCollapse(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_ColumnChute(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_ChupinColumn(SlumpScene, SlumpProblem, MPI_Comm);
 
 PetscErrorCode SlumpSceneRegister(const char name[], const char description[], SlumpSceneCreateFn create)
 {
@@ -56,6 +57,7 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("bingham_dam_break", "Bingham column collapse with air (Liu et al., Riber's thesis): Re = 1e-3, Bn by -bn, to arrest", SlumpSceneCreate_BinghamDamBreak));
   PetscCall(SlumpSceneRegister("column_collapse", "Granular column collapse, mu(I) with air (Lagree et al. 2011, Riber's thesis): aspect ratio by -aspect_ratio (0.5), Coulomb floor mu_w 0.6", SlumpSceneCreate_ColumnCollapse));
   PetscCall(SlumpSceneRegister("column_chute", "The mu(I) column of column_collapse released from -release_height h_r (0.5): starts at the impact, t = sqrt(2 h_r/g), velocity sqrt(2 g h_r) (Riber's thesis sec. 4.3.3, in 2-D)", SlumpSceneCreate_ColumnChute));
+  PetscCall(SlumpSceneRegister("chupin_column", "Drucker-Prager column of Chupin, Dubois & Phan (SI): 0.20 x 0.14 m (-column_height 0.40), tan 24 deg (-friction_angle), Coulomb floor -wall rough|smooth", SlumpSceneCreate_ChupinColumn));
   PetscCall(SlumpSceneRegister("mms_stokes", "manufactured Stokes solution on the unit square (Dirichlet + traction); spatial orders", SlumpSceneCreate_MMSStokes));
   PetscFunctionReturn(0);
 }

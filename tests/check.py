@@ -1154,7 +1154,9 @@ def test_column_collapse():
     parameters, Coulomb floor mu_w = 0.6, cells of 0.1 h_i), run until the
     mean shear rate of the material falls below 0.05 (root-found; the run
     stops there). Checks against REFERENCES.md: (1) the run-out
-    (r_f - r_i)/r_i within 15 % of the thesis' fit 1.72 a^0.97 = 0.878;
+    (r_f - r_i)/r_i within 15 % of the thesis' fit 1.72 a^0.97 = 0.878, with
+    r_f the zero contour's end and, separately, the end of the layer at
+    least 5 % of h_i thick;
     (2) the height on the axis within 10 % of h_i (the deposit is a truncated
     cone whose top stays at h_i); (3) the arrest time lies between the
     published collapse time 3 sqrt(h_i/g) and the scene's final time 8;
@@ -1172,6 +1174,7 @@ def test_column_collapse():
     kmax = max(r["kinetic_energy"] for r in ser)
     kend = ser[-1]["kinetic_energy"]
     fit = 1.72 * 0.5 ** 0.97
+    print("column_collapse a = 0.5: run-out of the layer >= 5 %% h_i thick %.4f (%+.1f %%)" % (s["runout_thick_over_ri"], 100 * (s["runout_thick_over_ri"] / (1.72 * 0.5 ** 0.97) - 1)))
     print("column_collapse a = 0.5, 52 x 13 cells: run-out (r_f - r_i)/r_i = %.4f (thesis fit %.4f, %+.1f %%), axis height %.4f h_i, "
           "arrest at t = %.3f (mean |gdot| < 0.05), KE %.3e at arrest / peak %.3e, volume drift max %.3e, %d steps, %.1f s"
           % (s["runout_over_ri"], fit, 100 * (s["runout_over_ri"] / fit - 1), s["height_axis_over_hi"], ta, kend, kmax, s["volume_drift_max"], s["steps"], s["wall_time"]))
@@ -1179,6 +1182,8 @@ def test_column_collapse():
         fail("the scene's run-out fit %g differs from 1.72 a^0.97 = %g" % (s["runout_fit_thesis"], fit))
     if not abs(s["runout_over_ri"] / fit - 1) <= 0.15:
         fail("run-out %.4f is not within 15 %% of the fit %.4f" % (s["runout_over_ri"], fit))
+    if not abs(s["runout_thick_over_ri"] / fit - 1) <= 0.15:
+        fail("run-out of the layer >= 5 %% h_i thick %.4f is not within 15 %% of the fit %.4f" % (s["runout_thick_over_ri"], fit))
     if not 0.9 <= s["height_axis_over_hi"] <= 1.001:
         fail("axis height %.4f h_i outside [0.9, 1.001]" % s["height_axis_over_hi"])
     if not 3.0 <= ta <= 8.0:
@@ -1279,6 +1284,40 @@ def test_column_chute():
     for k in ("front", "kinetic_energy", "steps"):
         if abs(sc[k] - sz[k]) > 1e-10 * max(1.0, abs(sc[k])):
             fail("-release_height 0 differs from column_collapse in %s: %r vs %r" % (k, sz[k], sc[k]))
+
+
+def test_chupin_walls():
+    """(slow, about 6 minutes) The Drucker-Prager column of Chupin, Dubois &
+    Phan, 0.20 x 0.14 m, tan 24 deg grains, on the rough (tan 24 deg) and the
+    smooth (tan 17 deg) floor, each run to arrest (mean shear rate < 0.2 1/s,
+    root-found). Checks: (1) both arrest within the scene's 2 s; (2) the
+    smooth floor spreads further than the rough one; (3) on each, the
+    deposit's mean slope between 10 % and 90 % of the axis height is below
+    the grains' friction tan 24 deg (a Drucker-Prager heap at rest cannot be
+    steeper) and positive; (4) volume drift <= 2 %. The slides give no
+    numbers, so this checks the physics' ordering, not an agreement."""
+    out = {}
+    for wall in ("rough", "smooth"):
+        d = work("chupin_" + wall)
+        run("chupin_column", ["-wall", wall, "-arrest_stop", "first", "-output_fields", "0"], d)
+        s = summary(d)
+        with open(os.path.join(d, "deposit.csv")) as f:
+            dep = [(float(r["x"]), float(r["height"])) for r in csv.DictReader(f)]
+        h0 = dep[0][1]
+        x90 = next(x for x, h in dep if h <= 0.9 * h0)
+        x10 = next(x for x, h in dep if h <= 0.1 * h0)
+        slope = 0.8 * h0 / (x10 - x90)
+        out[wall] = (s, slope)
+        print("chupin_column 0.20 x 0.14 m, %s floor: arrest at t = %.3f s, front %.4f m, axis height %.4f m, mean slope %.3f (tan 24 deg = %.3f), "
+              "volume drift %.2e, %d steps, %.1f s" % (wall, s["t_arrest"], s["front"], s["height_axis"], slope, math.tan(math.radians(24)), s["volume_drift_max"], s["steps"], s["wall_time"]))
+        if not 0 < s["t_arrest"] <= 2.0:
+            fail("%s floor: no arrest within 2 s (t_arrest %g)" % (wall, s["t_arrest"]))
+        if not 0 < slope < math.tan(math.radians(24)):
+            fail("%s floor: deposit slope %.3f not in (0, tan 24 deg)" % (wall, slope))
+        if not s["volume_drift_max"] <= 0.02:
+            fail("%s floor: volume drift %.3e > 2 %%" % (wall, s["volume_drift_max"]))
+    if not out["smooth"][0]["front"] > out["rough"][0]["front"]:
+        fail("the smooth floor's front %.4f does not pass the rough floor's %.4f" % (out["smooth"][0]["front"], out["rough"][0]["front"]))
 
 
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}

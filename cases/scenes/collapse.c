@@ -89,6 +89,20 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
     PetscCall(SlumpLevelSetGetVolumeShift(ls, &shift));
     PetscCall(SlumpSceneAddResult(scene, "volume_correction_shift", shift));
   }
+  {
+    /* the front of the layer at least 5 % of h_i thick: the zero contour's
+       end includes a film thinner than a cell that creeps on ahead */
+    const PetscInt npt = 801;
+    PetscReal     *xs, *top, fthick = 0.0;
+    PetscCall(PetscMalloc2(npt, &xs, npt, &top));
+    for (PetscInt i = 0; i < npt; ++i) xs[i] = c->L * i / (npt - 1.0);
+    PetscCall(SlumpLevelSetComputeProfile(ls, t, X, npt, xs, top));
+    for (PetscInt i = 0; i < npt; ++i)
+      if (top[i] >= 0.05 * c->hi) fthick = xs[i];
+    PetscCall(PetscFree2(xs, top));
+    PetscCall(SlumpSceneAddResult(scene, "front_thick", fthick));
+    if (c->runout_fit > 0) PetscCall(SlumpSceneAddResult(scene, "runout_thick_over_ri", (fthick - c->ri) / c->ri));
+  }
   if (c->runout_fit > 0) {
     PetscCall(SlumpSceneAddResult(scene, "runout_over_ri", (box[1] - c->ri) / c->ri));
     PetscCall(SlumpSceneAddResult(scene, "runout_fit_thesis", c->runout_fit));
@@ -381,5 +395,64 @@ PetscErrorCode SlumpSceneCreate_ColumnChute(SlumpScene scene, SlumpProblem prob,
   scene->results = ChuteResults;
   PetscCall(SlumpSceneAddParameter(scene, "release_height", hr));
   PetscCall(SlumpSceneAddParameter(scene, "aspect_ratio_release", (1.0 + hr) * a));
+  PetscFunctionReturn(0);
+}
+
+/* chupin_column: the Drucker-Prager collapses of Chupin, Dubois & Phan
+   (2019 slides; REFERENCES.md), in SI units: a column 0.20 m wide of height
+   0.14 m (-column_height 0.40 for the tall one), grains rho = 1500 kg/m^3
+   with a viscous part eta = 0.5 Pa s and friction mu_f = tan 24 deg
+   (-friction_angle 28 for the other material), yield stress mu_f p
+   (dp_bercovier, eps = 1e-2 1/s); air rho = 1, eta = 1e-5; g = 9.81.
+   Floor: Coulomb friction tan 24 deg (-wall rough, default) or tan 17 deg
+   (-wall smooth), delta = 1e-3 m/s. Box r_i + 4 h_i long, 1.25 h_i high,
+   cells of h_i/10 (-cell_size in metres). Arrest when the material's mean
+   shear rate falls below 0.2 1/s (it peaks at ~10 1/s; eps sets the creep).
+   The lithostatic variant is not set up: the litho_* laws take a fixed
+   height H, not the current depth of the material. */
+typedef enum { WALL_ROUGH, WALL_SMOOTH } WallKind;
+static const char *const Walls[] = {"rough", "smooth"};
+
+PetscErrorCode SlumpSceneCreate_ChupinColumn(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+{
+  ColumnCtx    *c;
+  SlumpRheology rheo;
+  PetscReal     hi = 0.14, angle = 24.0, cell = 0.0;
+  PetscInt      wall = WALL_ROUGH;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  scene->ctx = c;
+  PetscOptionsBegin(comm, NULL, "Scene chupin_column", "");
+  PetscCall(PetscOptionsReal("-column_height", "Initial height h_i of the column, m (0.14 or 0.40 in the slides)", "", hi, &hi, NULL));
+  PetscCall(PetscOptionsReal("-friction_angle", "Internal friction angle of the grains, degrees (24 or 28)", "", angle, &angle, NULL));
+  PetscCall(PetscOptionsEList("-wall", "Floor: rough (Coulomb tan 24 deg) or smooth (tan 17 deg)", "", Walls, 2, Walls[wall], &wall, NULL));
+  PetscCall(PetscOptionsReal("-cell_size", "Target cell size of the default mesh, m (default h_i/10)", "", cell, &cell, NULL));
+  PetscOptionsEnd();
+  PetscCheck(hi > 0, comm, PETSC_ERR_USER_INPUT, "-column_height must be positive; got %g", (double)hi);
+  PetscCheck(angle > 0 && angle < 90, comm, PETSC_ERR_USER_INPUT, "-friction_angle must lie in (0, 90) degrees; got %g", (double)angle);
+  PetscCheck(cell >= 0, comm, PETSC_ERR_USER_INPUT, "-cell_size must be positive; got %g", (double)cell);
+  c->ri     = 0.20;
+  c->hi     = hi;
+  c->g      = 9.81;
+  c->L      = c->ri + 4.0 * hi;
+  c->H      = 1.25 * hi;
+  c->cell   = cell > 0 ? cell : hi / 10.0;
+  c->floor  = FLOOR_COULOMB;
+  c->fcoeff = PetscTanReal((wall == WALL_ROUGH ? 24.0 : 17.0) * PETSC_PI / 180.0);
+  c->freg   = 1e-3;
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologySetType(rheo, "dp_bercovier"));
+  PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 0.5));
+  PetscCall(SlumpRheologySetParameter(rheo, "mu", PetscTanReal(angle * PETSC_PI / 180.0)));
+  PetscCall(SlumpRheologySetParameter(rheo, "eps", 1e-2));
+  scene->tfinal           = 2.0;
+  scene->dtout            = 0.05;
+  scene->arrest_threshold = 0.2;
+  scene->rtol             = 1e-3;
+  scene->atol             = 1e-4;
+  PetscCall(SlumpProblemSetTwoPhaseViscosityShift(prob, 1.0));
+  PetscCall(ColumnSetUp(scene, prob, comm, c, 1500.0, 1.0, 1e-5));
+  PetscCall(SlumpSceneAddParameter(scene, "friction_angle", angle));
+  PetscCall(SlumpSceneAddParameter(scene, "wall_friction", c->fcoeff));
   PetscFunctionReturn(0);
 }
