@@ -382,7 +382,6 @@ PetscErrorCode SlumpSceneCreate_ColumnChute(SlumpScene scene, SlumpProblem prob,
   PetscCall(PetscOptionsReal("-cell_size", "Target cell size of the default mesh, in units of h_i", "", h, &h, NULL));
   PetscOptionsEnd();
   PetscCheck(hr >= 0, comm, PETSC_ERR_USER_INPUT, "-release_height must be >= 0; got %g", (double)hr);
-  PetscCheck(a > 0, comm, PETSC_ERR_USER_INPUT, "-aspect_ratio must be positive; got %g", (double)a);
   ch->hr    = hr;
   ch->v     = PetscSqrtReal(2.0 * hr); /* g = 1 */
   scene->t0 = PetscSqrtReal(2.0 * hr);
