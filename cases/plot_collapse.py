@@ -11,7 +11,8 @@ usage: python3 cases/plot_collapse.py OUTPUT_DIR [--reference CSV] [--g 9.81]
 Reads interface.csv, series.csv, summary.csv (and deposit.csv); writes
 OUTPUT_DIR/front.png, OUTPUT_DIR/energy.png (and OUTPUT_DIR/deposit.png) with
 gnuplot (Debian package gnuplot-nox). The reference CSV has columns T,Z
-(front) and optionally T,H in a second file given by --reference-height."""
+(front) and optionally T,H in a second file given by --reference-height;
+lines starting with # are comments (e.g. cases/data/martin_moyce_1952.csv)."""
 import argparse
 import csv
 import math
@@ -29,6 +30,7 @@ def main():
     ap.add_argument("dir")
     ap.add_argument("--reference", default=None, help="CSV with columns T,Z (front)")
     ap.add_argument("--reference-height", default=None, help="CSV with columns T,H (height on the axis)")
+    ap.add_argument("--reference-title", default="reference", help="legend of the reference points")
     ap.add_argument("--g", type=float, default=9.81)
     ap.add_argument("--title", default=None)
     ap.add_argument("--time-scale", choices=["martin", "gravity"], default=None,
@@ -62,10 +64,17 @@ def main():
     title = a.title or "%s, %s cells" % (s["scene"], s["cells"])
     plots = ["'front.dat' using 1:2 with lines lw 2 title 'front Z = x_f / r_i'",
              "'front.dat' using 1:3 with lines lw 2 title 'height on the axis H = h / h_i'"]
-    if a.reference:
-        plots.append("'%s' using 1:2 with points pt 7 title 'front, reference'" % os.path.abspath(a.reference))
-    if a.reference_height:
-        plots.append("'%s' using 1:2 with points pt 5 title 'height, reference'" % os.path.abspath(a.reference_height))
+    for ref, name, pt, what in ((a.reference, "reference_front.dat", 7, "front"), (a.reference_height, "reference_height.dat", 5, "height")):
+        if ref:
+            with open(ref) as f:
+                pts = list(csv.DictReader(l for l in f if not l.startswith("#")))
+            col = "Z" if what == "front" else "H"
+            with open(os.path.join(a.dir, name), "w") as f:
+                tlast = float(ifc[-1]["t"]) * tscale
+                for r in pts:
+                    if float(r["T"]) <= 1.05 * tlast:  # the run's time span
+                        f.write("%s %s\n" % (r["T"], r[col]))
+            plots.append("'%s' using 1:2 with points pt %d title '%s, %s'" % (name, pt, what, a.reference_title))
     script = """set terminal pngcairo size 800,550 noenhanced
 set output 'front.png'
 set title '%s'

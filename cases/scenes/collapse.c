@@ -407,21 +407,27 @@ PetscErrorCode SlumpSceneCreate_ColumnChute(SlumpScene scene, SlumpProblem prob,
    (-wall smooth), delta = 1e-3 m/s. Box r_i + 4 h_i long, 1.25 h_i high,
    cells of h_i/10 (-cell_size in metres). Arrest when the material's mean
    shear rate falls below 0.2 1/s (it peaks at ~10 1/s; eps sets the creep).
-   The lithostatic variant is not set up: the litho_* laws take a fixed
-   height H, not the current depth of the material. */
+   -plasticity pl: the slides' lithostatic model (PL), yield stress
+   mu_f p_L with p_L = rho_s g (H - y) instead of mu_f p (litho_bercovier).
+   The slides define p_L by rho_s alone, so H is a constant: we take the
+   column's initial height h_i (the yield stress vanishes at the initial top
+   and nowhere in the material afterwards). */
 typedef enum { WALL_ROUGH, WALL_SMOOTH } WallKind;
 static const char *const Walls[] = {"rough", "smooth"};
+typedef enum { PLASTICITY_DP, PLASTICITY_PL } PlasticityKind;
+static const char *const Plasticities[] = {"dp", "pl"};
 
 PetscErrorCode SlumpSceneCreate_ChupinColumn(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   ColumnCtx    *c;
   SlumpRheology rheo;
   PetscReal     hi = 0.14, angle = 24.0, cell = 0.0;
-  PetscInt      wall = WALL_ROUGH;
+  PetscInt      wall = WALL_ROUGH, plast = PLASTICITY_DP;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   scene->ctx = c;
   PetscOptionsBegin(comm, NULL, "Scene chupin_column", "");
+  PetscCall(PetscOptionsEList("-plasticity", "Yield stress: dp (Drucker-Prager, mu_f p) or pl (lithostatic, mu_f rho g (h_i - y))", "", Plasticities, 2, Plasticities[plast], &plast, NULL));
   PetscCall(PetscOptionsReal("-column_height", "Initial height h_i of the column, m (0.14 or 0.40 in the slides)", "", hi, &hi, NULL));
   PetscCall(PetscOptionsReal("-friction_angle", "Internal friction angle of the grains, degrees (24 or 28)", "", angle, &angle, NULL));
   PetscCall(PetscOptionsEList("-wall", "Floor: rough (Coulomb tan 24 deg) or smooth (tan 17 deg)", "", Walls, 2, Walls[wall], &wall, NULL));
@@ -440,7 +446,12 @@ PetscErrorCode SlumpSceneCreate_ChupinColumn(SlumpScene scene, SlumpProblem prob
   c->fcoeff = PetscTanReal((wall == WALL_ROUGH ? 24.0 : 17.0) * PETSC_PI / 180.0);
   c->freg   = 1e-3;
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  PetscCall(SlumpRheologySetType(rheo, "dp_bercovier"));
+  PetscCall(SlumpRheologySetType(rheo, plast == PLASTICITY_DP ? "dp_bercovier" : "litho_bercovier"));
+  if (plast == PLASTICITY_PL) {
+    PetscCall(SlumpRheologySetParameter(rheo, "density", 1500.0));
+    PetscCall(SlumpRheologySetParameter(rheo, "gravity", 9.81));
+    PetscCall(SlumpRheologySetParameter(rheo, "height", hi));
+  }
   PetscCall(SlumpRheologySetParameter(rheo, "viscosity", 0.5));
   PetscCall(SlumpRheologySetParameter(rheo, "mu", PetscTanReal(angle * PETSC_PI / 180.0)));
   PetscCall(SlumpRheologySetParameter(rheo, "eps", 1e-2));
@@ -453,5 +464,6 @@ PetscErrorCode SlumpSceneCreate_ChupinColumn(SlumpScene scene, SlumpProblem prob
   PetscCall(ColumnSetUp(scene, prob, comm, c, 1500.0, 1.0, 1e-5));
   PetscCall(SlumpSceneAddParameter(scene, "friction_angle", angle));
   PetscCall(SlumpSceneAddParameter(scene, "wall_friction", c->fcoeff));
+  PetscCall(SlumpSceneAddParameter(scene, "plasticity", (PetscReal)plast));
   PetscFunctionReturn(0);
 }
