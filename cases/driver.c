@@ -264,6 +264,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
       PetscCall(PetscSNPrintf(path, sizeof(path), "%s/interface.csv", dir));
       PetscCall(SlumpLevelSetSetLog(ls, path));
       PetscCall(SlumpLevelSetRecordVolume(ls, scene->t0, X));
+      PetscCall(SlumpLevelSetUpdateSurface(ls, scene->t0, X));
     }
   }
   PetscCall(PetscMemzero(&stats, sizeof(stats)));

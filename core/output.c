@@ -198,7 +198,7 @@ PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
     funcs[5] = pw.tp_yielded;
   }
   PetscCall(DMGetDS(w->dmOut, &ds));
-  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
+  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM + prob->nsurf, prob->constants));
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
   PetscCall(DMProjectField(w->dmOut, t, prob->diagX, funcs, INSERT_ALL_VALUES, w->Xout));
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields.h5", w->dir));

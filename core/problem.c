@@ -634,10 +634,27 @@ PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
     prob->constants[SLUMP_C_WALL_COEFF] = prob->wallCoeff;
     prob->constants[SLUMP_C_WALL_REG]   = prob->wallReg;
   }
+  /* the table itself, after SLUMP_C_NUM, is kept */
+  prob->constants[SLUMP_C_SURF_N]  = prob->nsurf;
+  prob->constants[SLUMP_C_SURF_X0] = prob->surfX0;
+  prob->constants[SLUMP_C_SURF_DX] = prob->surfDx;
   PetscCall(DMGetDS(prob->dm, &ds));
-  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
+  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM + prob->nsurf, prob->constants));
   PetscCall(DMGetDS(prob->dmDiag, &ds));
-  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM, prob->constants));
+  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM + prob->nsurf, prob->constants));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetSurfaceHeight(SlumpProblem prob, PetscInt n, PetscReal x0, PetscReal dx, const PetscReal h[])
+{
+  PetscFunctionBeginUser;
+  PetscCheck(n >= 0 && n <= SLUMP_C_SURF_MAX, prob->comm, PETSC_ERR_ARG_OUTOFRANGE, "The free-surface table takes 0 to %d samples; got %" PetscInt_FMT, (int)SLUMP_C_SURF_MAX, n);
+  PetscCheck(n < 2 || dx > 0, prob->comm, PETSC_ERR_ARG_OUTOFRANGE, "The free-surface table needs a positive spacing; got %g", (double)dx);
+  prob->nsurf  = n;
+  prob->surfX0 = x0;
+  prob->surfDx = dx;
+  for (PetscInt i = 0; i < n; ++i) prob->constants[SLUMP_C_NUM + i] = h[i];
+  if (prob->setup) PetscCall(SlumpProblemSetConstantsAll(prob));
   PetscFunctionReturn(0);
 }
 

@@ -65,8 +65,38 @@ enum {
   SLUMP_C_WALL_COEFF = SLUMP_C_MIX_RHO + 4, /* wall friction: beta or mu_w                 */
   SLUMP_C_WALL_REG   = SLUMP_C_MIX_RHO + 5, /* wall friction: Coulomb velocity scale delta */
   SLUMP_C_MIX_SHIFT  = SLUMP_C_MIX_RHO + 6, /* two-phase: viscosity Heaviside shift (x w)  */
-  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 7
+  SLUMP_C_SURF_N     = SLUMP_C_MIX_RHO + 7, /* free-surface table: samples (0: none)       */
+  SLUMP_C_SURF_X0    = SLUMP_C_MIX_RHO + 8, /* free-surface table: first abscissa          */
+  SLUMP_C_SURF_DX    = SLUMP_C_MIX_RHO + 9, /* free-surface table: spacing                 */
+  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 10,
+  /* the free-surface heights follow the fixed constants:
+     constants[SLUMP_C_NUM + i] = h(x0 + i dx), i < constants[SLUMP_C_SURF_N] */
+  SLUMP_C_SURF_MAX = 4096
 };
+
+/* Height of the free surface above abscissa x from the table in the kernels'
+   constants (SlumpProblemSetSurfaceHeight): linear between the samples,
+   constant beyond the ends. False when no table is set. */
+static inline PetscBool SlumpSurfaceHeight(const PetscScalar constants[], PetscReal x, PetscReal *h)
+{
+  const PetscInt n = (PetscInt)PetscRealPart(constants[SLUMP_C_SURF_N]);
+  PetscReal      s;
+  PetscInt       i;
+  if (n < 1) return PETSC_FALSE;
+  s = (x - PetscRealPart(constants[SLUMP_C_SURF_X0])) / PetscRealPart(constants[SLUMP_C_SURF_DX]);
+  if (n == 1 || s <= 0) {
+    *h = PetscRealPart(constants[SLUMP_C_NUM]);
+    return PETSC_TRUE;
+  }
+  if (s >= n - 1) {
+    *h = PetscRealPart(constants[SLUMP_C_NUM + n - 1]);
+    return PETSC_TRUE;
+  }
+  i  = (PetscInt)s;
+  s -= i;
+  *h = (1 - s) * PetscRealPart(constants[SLUMP_C_NUM + i]) + s * PetscRealPart(constants[SLUMP_C_NUM + i + 1]);
+  return PETSC_TRUE;
+}
 #define SLUMP_MAX_FIELDS 3
 
 /* ----------------------------------------------------------- formulation */
@@ -171,6 +201,12 @@ PETSC_EXTERN PetscErrorCode SlumpProblemGetExtraField(SlumpProblem prob, PetscIn
 PETSC_EXTERN PetscErrorCode SlumpProblemGetExtraFieldIS(SlumpProblem prob, IS *is);
 /* Call the extra field's between-step action (collective). */
 PETSC_EXTERN PetscErrorCode SlumpProblemPostStep(SlumpProblem prob, PetscInt step, PetscReal t, Vec X, PetscBool *changed);
+/* The current free-surface height h(x) on n uniform samples from x0 with
+   spacing dx (n <= SLUMP_C_SURF_MAX; n = 0 removes it), handed to the
+   kernels after their constants: the lithostatic yield stress then uses
+   the depth h(x) - y below the surface instead of a fixed height. The level
+   set sets it between steps (SlumpLevelSetSetSurfaceFeed). */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetSurfaceHeight(SlumpProblem prob, PetscInt n, PetscReal x0, PetscReal dx, const PetscReal h[]);
 /* Local solution at t with boundary values (read only; valid until the next call). */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLocalSolution(SlumpProblem prob, PetscReal t, Vec X, Vec *locX);
 /* Local indices of a field's dofs in the closure of every local cell

@@ -39,7 +39,9 @@ struct _n_SlumpProblem {
   char          flowRateLabel[64];
   PetscBool     setup, pressurePinned;
   PetscReal     area;
-  PetscScalar   constants[SLUMP_C_NUM];
+  PetscScalar   constants[SLUMP_C_NUM + SLUMP_C_SURF_MAX]; /* the fixed ones, then the surface table */
+  PetscInt      nsurf;
+  PetscReal     surfX0, surfDx;
   PetscInt      jacmode;
   /* work */
   Vec           locX, locXdot, locF, diagX;

@@ -48,6 +48,10 @@ struct _n_SlumpLevelSet {
   PetscReal      volume_shift; /* sum of the corrections' shifts of phi */
   PetscInt       ngauge;
   PetscReal      gauge[4];
+  /* free-surface height handed to the kernels between steps */
+  PetscBool      surface_feed;
+  PetscInt       nsurf;
+  PetscReal     *surf_x, *surf_h;
 };
 
 PETSC_INTERN PetscErrorCode SlumpLSNodesGet(SlumpLevelSet ls, SlumpLSNodes **nodes);

@@ -418,6 +418,9 @@ static PetscErrorCode PostStep(void *ctx, SlumpProblem prob, PetscInt step, Pets
   *changed = PETSC_FALSE;
   if (ls->reinit.apply && ls->reinit_every > 0 && step > 0 && step % ls->reinit_every == 0) PetscCall(SlumpLevelSetReinitialise(ls, t, X, changed));
   PetscCall(SlumpLevelSetRecordVolume(ls, t, X));
+  /* every step: a lag of 5 or 20 steps let the front run on ahead of its
+     own lagged surface, with little yield stress (chupin_column -plasticity pl) */
+  PetscCall(SlumpLevelSetUpdateSurface(ls, t, X));
   PetscFunctionReturn(0);
 }
 
@@ -428,6 +431,7 @@ static PetscErrorCode View(void *ctx, SlumpProblem prob, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "level set: P%" PetscInt_FMT ", SUPG %g, h %g, reinitialisation %s", ls->degree, (double)ls->supg, (double)ls->h, ls->reinit_name));
   if (ls->reinit.filtered) PetscCall(PetscViewerASCIIPrintf(viewer, " (lambda %g, E %g)", (double)ls->lambda, (double)(ls->E_cells * ls->h)));
   if (ls->reinit.apply) PetscCall(PetscViewerASCIIPrintf(viewer, " every %" PetscInt_FMT " steps%s", ls->reinit_every, ls->volume_correction ? ", volume corrected" : ""));
+  if (ls->surface_feed) PetscCall(PetscViewerASCIIPrintf(viewer, ", surface height fed to the kernels"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   PetscFunctionReturn(0);
 }
@@ -437,6 +441,7 @@ static PetscErrorCode Destroy(void *ctx)
   SlumpLevelSet ls = (SlumpLevelSet)ctx;
   PetscFunctionBeginUser;
   if (ls->log) PetscCall(PetscFClose(PETSC_COMM_SELF, ls->log));
+  PetscCall(PetscFree2(ls->surf_x, ls->surf_h));
   PetscCall(SlumpLSNodesDestroy(&ls->nodes));
   PetscCall(PetscFree(ls));
   PetscFunctionReturn(0);
@@ -504,6 +509,7 @@ PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls)
   PetscCall(PetscOptionsReal("-reinit_convective_width", "Filter width E of the convective method, in cells", "", ls->E_cells, &ls->E_cells, NULL));
   PetscCall(PetscOptionsInt("-reinit_hj_iterations", "Pseudo-time iterations of the Hamilton-Jacobi method", "", ls->hj_iterations, &ls->hj_iterations, NULL));
   PetscCall(PetscOptionsBool("-reinit_volume_correction", "After each between-step reinitialisation, shift phi so that the material volume is the initial one", "", ls->volume_correction, &ls->volume_correction, NULL));
+  PetscCall(PetscOptionsBool("-levelset_surface_feed", "Hand the current free-surface height to the kernels after every step (lithostatic yield stress below the current surface)", "SlumpLevelSetSetSurfaceFeed", ls->surface_feed, &ls->surface_feed, NULL));
   PetscCall(PetscOptionsReal("-reinit_hj_cfl", "Pseudo-time step of the Hamilton-Jacobi method over the local mesh size", "", ls->hj_cfl, &ls->hj_cfl, NULL));
   PetscOptionsEnd();
   PetscCheck(ls->degree == 1 || ls->degree == 2, ls->comm, PETSC_ERR_USER_INPUT, "-levelset_degree must be 1 or 2; got %" PetscInt_FMT, ls->degree);
@@ -545,6 +551,33 @@ PetscErrorCode SlumpLevelSetGetVolumeShift(SlumpLevelSet ls, PetscReal *shift)
 {
   PetscFunctionBeginUser;
   *shift = ls->volume_shift;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetSetSurfaceFeed(SlumpLevelSet ls, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  ls->surface_feed = on;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetUpdateSurface(SlumpLevelSet ls, PetscReal t, Vec X)
+{
+  PetscFunctionBeginUser;
+  if (!ls->surface_feed) PetscFunctionReturn(0);
+  if (!ls->nsurf) {
+    DM        dm;
+    PetscReal lo[3], hi[3];
+    PetscCall(SlumpProblemGetDM(ls->prob, &dm));
+    PetscCall(DMGetBoundingBox(dm, lo, hi));
+    /* four samples per smallest edge, as the deposit profile */
+    ls->nsurf = PetscMin((PetscInt)PetscCeilReal(4.0 * (hi[0] - lo[0]) / ls->h) + 1, (PetscInt)SLUMP_C_SURF_MAX);
+    ls->nsurf = PetscMax(ls->nsurf, 2);
+    PetscCall(PetscMalloc2(ls->nsurf, &ls->surf_x, ls->nsurf, &ls->surf_h));
+    for (PetscInt i = 0; i < ls->nsurf; ++i) ls->surf_x[i] = lo[0] + (hi[0] - lo[0]) * i / (ls->nsurf - 1);
+  }
+  PetscCall(SlumpLevelSetComputeProfile(ls, t, X, ls->nsurf, ls->surf_x, ls->surf_h));
+  PetscCall(SlumpProblemSetSurfaceHeight(ls->prob, ls->nsurf, ls->surf_x[0], ls->surf_x[1] - ls->surf_x[0], ls->surf_h));
   PetscFunctionReturn(0);
 }
 

@@ -80,6 +80,14 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeProfile(SlumpLevelSet ls, PetscR
 /* The profile across the mesh (four samples per smallest edge) as CSV
    x,height (rank 0 writes): the deposit of a collapse at its final time. */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetWriteProfile(SlumpLevelSet ls, PetscReal t, Vec X, const char path[]);
+/* Hand the current free-surface height h(x) (SlumpLevelSetComputeProfile on
+   four samples per smallest edge) to the kernels at the start and after
+   every accepted step (SlumpProblemSetSurfaceHeight): the lithostatic
+   yield stress then uses the depth below the current surface, lagged by
+   one step. Option -levelset_surface_feed. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetSurfaceFeed(SlumpLevelSet ls, PetscBool on);
+/* Compute and hand over the surface now (collective; no-op if not fed). */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetUpdateSurface(SlumpLevelSet ls, PetscReal t, Vec X);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetGauges(SlumpLevelSet ls, PetscInt n, const PetscReal x[]);
 /* | |grad d| - 1 | over the band of cells within `band` cells of the zero
    contour (d: the distance, recovered from the filtered state if need be):

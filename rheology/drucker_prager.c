@@ -2,7 +2,9 @@
  * REFERENCES.md):
  *   Drucker-Prager:  tau_y = mu P(p),  P = (p + sqrt(p^2 + d^2))/2 (eq. 16 of
  *                    Chauchat & Medale; max(p, 0) when d = 0),
- *   lithostatic:     tau_y = mu rho g (H - y)_+  (independent of p),
+ *   lithostatic:     tau_y = mu rho g (H - y)_+  (independent of p; H the
+ *                    fixed height, or the current free-surface height h(x)
+ *                    when the problem hands the kernels a surface table),
  *   eta = eta_p + tau_y R(||gdot||),
  * R = 1/(g + eps) (_simple), 1/sqrt(g^2 + eps^2) (_bercovier),
  *     (1 - exp(-m g))/g (_papanastasiou).
@@ -21,11 +23,15 @@ static inline void DPKernel(SlumpRegKind kind, const PetscScalar prm[], PetscRea
   *ty    = mu * P;
 }
 
+/* prm is constants + SLUMP_C_RHEO (the kernels' layout): when the problem
+   carries a free-surface table, H is the current surface height h(x). */
 static inline void LithoKernel(SlumpRegKind kind, const PetscScalar prm[], PetscReal g, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
 {
-  const PetscReal etap = PetscRealPart(prm[0]), mu = PetscRealPart(prm[1]), rho = PetscRealPart(prm[2]), grav = PetscRealPart(prm[3]), H = PetscRealPart(prm[4]), r = PetscRealPart(prm[5]);
-  const PetscReal depth = H - (x ? x[1] : 0.0), tauy = mu * rho * grav * (depth > 0 ? depth : 0.0);
-  PetscReal       R, dR;
+  const PetscReal etap = PetscRealPart(prm[0]), mu = PetscRealPart(prm[1]), rho = PetscRealPart(prm[2]), grav = PetscRealPart(prm[3]), r = PetscRealPart(prm[5]);
+  PetscReal       H = PetscRealPart(prm[4]), depth, tauy, R, dR;
+  if (x) (void)SlumpSurfaceHeight(prm - SLUMP_C_RHEO, x[0], &H);
+  depth = H - (x ? x[1] : 0.0);
+  tauy  = mu * rho * grav * (depth > 0 ? depth : 0.0);
   SlumpYieldShape(kind, r, g, &R, &dR);
   *eta   = etap + tauy * R;
   *de_dg = tauy * dR;

@@ -221,7 +221,7 @@ PetscErrorCode SlumpRheologyGetConstants(SlumpRheology rheo, PetscInt *n, PetscS
 
 PetscErrorCode SlumpRheologyEvaluate(SlumpRheology rheo, PetscReal gdot, PetscReal p, PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp)
 {
-  PetscScalar prm[SLUMP_RHEOLOGY_MAX_PARAM];
+  PetscScalar cst[SLUMP_C_NUM] = {0}, *prm = &cst[SLUMP_C_RHEO]; /* laid out as the kernels' constants, no surface table */
   PetscReal   a, b, c, ty;
   PetscInt    n;
   PetscFunctionBeginUser;
@@ -235,7 +235,7 @@ PetscErrorCode SlumpRheologyEvaluate(SlumpRheology rheo, PetscReal gdot, PetscRe
 
 PetscErrorCode SlumpRheologyEvaluateAt(SlumpRheology rheo, PetscReal gdot, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp, PetscReal *yield_stress)
 {
-  PetscScalar prm[SLUMP_RHEOLOGY_MAX_PARAM];
+  PetscScalar cst[SLUMP_C_NUM] = {0}, *prm = &cst[SLUMP_C_RHEO]; /* laid out as the kernels' constants, no surface table */
   PetscReal   a, b, c, ty;
   PetscInt    n;
   PetscFunctionBeginUser;
@@ -250,7 +250,7 @@ PetscErrorCode SlumpRheologyEvaluateAt(SlumpRheology rheo, PetscReal gdot, Petsc
 
 PetscErrorCode SlumpRheologyGetYieldStress(SlumpRheology rheo, PetscReal p, PetscReal *tau_y)
 {
-  PetscScalar prm[SLUMP_RHEOLOGY_MAX_PARAM];
+  PetscScalar cst[SLUMP_C_NUM] = {0}, *prm = &cst[SLUMP_C_RHEO]; /* laid out as the kernels' constants, no surface table */
   PetscReal   a, b, c;
   PetscInt    n;
   PetscFunctionBeginUser;

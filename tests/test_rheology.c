@@ -3,7 +3,9 @@
  * below and above a free surface), d eta/d||gdot|| and d eta/dp match
  * centred finite differences to 1e-6 relative (or to the round-off level
  * 1e-9 eta/h of the difference quotient), and eta is finite and positive.
- * Also checks that invalid parameters are refused. Prints nothing on success. */
+ * Also checks that invalid parameters are refused, and that the lithostatic
+ * laws take the depth below a free-surface table when the kernels' constants
+ * carry one. Prints nothing on success. */
 #include "slumprheology.h"
 
 static int failures = 0;
@@ -77,6 +79,41 @@ int main(int argc, char **argv)
       PetscCall(SlumpRheologyGetPlugViscosity(r, 0.0, &eta0));
       if (PetscAbsReal(eta0 - (1.0 + 1.0 * 1e4)) > 1e-10 * eta0) {
         printf("papanastasiou plug viscosity: expected %g, got %g\n", 1.0 + 1e4, (double)eta0);
+        failures++;
+      }
+    }
+  }
+  /* lithostatic yield below a surface table h = 1, 0.5, 0 at x = 0, 1, 2:
+     at x = 0.5 the surface is at 0.75, so eta there equals the fixed-height
+     law's (H = 2) at y + 2 - 0.75; beyond the table's ends h is constant */
+  {
+    SlumpRheologyPointwise pw;
+    PetscScalar            c[SLUMP_C_NUM + 3] = {0}, u[3] = {0.0, 0.0, 0.3}, u_x[6] = {0.2, 1.5, -0.4, -0.2, 0.0, 0.0};
+    const PetscInt         uOff[2] = {0, 2}, uOff_x[2] = {0, 4};
+    const PetscReal        pts[3][2] = {{0.5, 0.2}, {1.5, 0.1}, {-1.0, 0.4}}, hs[3] = {0.75, 0.25, 1.0};
+    PetscInt               n;
+    PetscCall(SlumpRheologySetType(r, "litho_bercovier"));
+    PetscCall(SlumpRheologySetParameter(r, "density", 3.0));
+    PetscCall(SlumpRheologySetParameter(r, "gravity", 2.0));
+    PetscCall(SlumpRheologySetParameter(r, "height", 2.0));
+    PetscCall(SlumpRheologySetParameter(r, "eps", 0.05));
+    PetscCall(SlumpRheologyGetConstants(r, &n, &c[SLUMP_C_RHEO]));
+    c[SLUMP_C_SURF_N]  = 3;
+    c[SLUMP_C_SURF_X0] = 0.0;
+    c[SLUMP_C_SURF_DX] = 1.0;
+    c[SLUMP_C_NUM]     = 1.0;
+    c[SLUMP_C_NUM + 1] = 0.5;
+    c[SLUMP_C_NUM + 2] = 0.0;
+    PetscCall(SlumpRheologyGetPointwise(r, &pw));
+    for (PetscInt k = 0; k < 3; ++k) {
+      PetscScalar     eta, g;
+      PetscReal       ref, hk;
+      const PetscReal xs2[2] = {pts[k][0], pts[k][1] + 2.0 - hs[k]};
+      pw.eta(2, 2, 0, uOff, uOff_x, u, NULL, u_x, NULL, NULL, NULL, NULL, NULL, 0.0, pts[k], SLUMP_C_NUM + 3, c, &eta);
+      pw.shear_rate(2, 2, 0, uOff, uOff_x, u, NULL, u_x, NULL, NULL, NULL, NULL, NULL, 0.0, pts[k], SLUMP_C_NUM + 3, c, &g);
+      PetscCall(SlumpRheologyEvaluateAt(r, PetscRealPart(g), 0.3, xs2, &ref, NULL, NULL, NULL));
+      if (!SlumpSurfaceHeight(c, pts[k][0], &hk) || PetscAbsReal(hk - hs[k]) > 1e-14 || PetscAbsReal(PetscRealPart(eta) - ref) > 1e-12 * ref) {
+        printf("litho_bercovier below the surface table at x = %g: h %g (expected %g), eta %.12g (expected %.12g)\n", (double)pts[k][0], (double)hk, (double)hs[k], (double)PetscRealPart(eta), (double)ref);
         failures++;
       }
     }

@@ -38,6 +38,7 @@ typedef struct {
   PetscReal runout_fit;   /* column_collapse: the thesis' fit of (r_f - r_i)/r_i (0: none) */
   PetscInt  reinit_every; /* between-step reinitialisation every n steps (0: the level set's default) */
   PetscReal cell;         /* target cell size of the default mesh (0: the scene's mesh_n as set) */
+  PetscBool surface_feed; /* hand the current free-surface height to the kernels (lithostatic yield) */
 } ColumnCtx;
 
 /* signed distance to the column [0, ri] x [0, hi] seen from the box: the
@@ -177,6 +178,7 @@ static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm 
     const PetscReal gauges[2] = {0.0, c->L};
     PetscCall(SlumpLevelSetSetGauges(ls, 2, gauges));
   }
+  PetscCall(SlumpLevelSetSetSurfaceFeed(ls, c->surface_feed));
   PetscCall(SlumpLevelSetSetFromOptions(ls));
   scene->steady  = PETSC_FALSE;
   scene->results = Results;
@@ -409,13 +411,15 @@ PetscErrorCode SlumpSceneCreate_ColumnChute(SlumpScene scene, SlumpProblem prob,
    shear rate falls below 0.2 1/s (it peaks at ~10 1/s; eps sets the creep).
    -plasticity pl: the slides' lithostatic model (PL), yield stress
    mu_f p_L with p_L = rho_s g (H - y) instead of mu_f p (litho_bercovier).
-   The slides define p_L by rho_s alone, so H is a constant: we take the
-   column's initial height h_i (the yield stress vanishes at the initial top
-   and nowhere in the material afterwards). */
+   The slides do not say what H is once the column deforms. With pl, H is
+   the current height h(x) of the free surface above the point (from the
+   level set, updated after every step): p_L is the weight of the material
+   column above, the shallow-layer reading. With pl_fixed, H is the
+   column's initial height h_i everywhere and at all times. */
 typedef enum { WALL_ROUGH, WALL_SMOOTH } WallKind;
 static const char *const Walls[] = {"rough", "smooth"};
-typedef enum { PLASTICITY_DP, PLASTICITY_PL } PlasticityKind;
-static const char *const Plasticities[] = {"dp", "pl"};
+typedef enum { PLASTICITY_DP, PLASTICITY_PL, PLASTICITY_PL_FIXED } PlasticityKind;
+static const char *const Plasticities[] = {"dp", "pl", "pl_fixed"};
 
 PetscErrorCode SlumpSceneCreate_ChupinColumn(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
@@ -427,7 +431,7 @@ PetscErrorCode SlumpSceneCreate_ChupinColumn(SlumpScene scene, SlumpProblem prob
   PetscCall(PetscNew(&c));
   scene->ctx = c;
   PetscOptionsBegin(comm, NULL, "Scene chupin_column", "");
-  PetscCall(PetscOptionsEList("-plasticity", "Yield stress: dp (Drucker-Prager, mu_f p) or pl (lithostatic, mu_f rho g (h_i - y))", "", Plasticities, 2, Plasticities[plast], &plast, NULL));
+  PetscCall(PetscOptionsEList("-plasticity", "Yield stress: dp (Drucker-Prager, mu_f p), pl (lithostatic, mu_f rho g (h(x) - y) below the current surface h) or pl_fixed (mu_f rho g (h_i - y))", "", Plasticities, 3, Plasticities[plast], &plast, NULL));
   PetscCall(PetscOptionsReal("-column_height", "Initial height h_i of the column, m (0.14 or 0.40 in the slides)", "", hi, &hi, NULL));
   PetscCall(PetscOptionsReal("-friction_angle", "Internal friction angle of the grains, degrees (24 or 28)", "", angle, &angle, NULL));
   PetscCall(PetscOptionsEList("-wall", "Floor: rough (Coulomb tan 24 deg) or smooth (tan 17 deg)", "", Walls, 2, Walls[wall], &wall, NULL));
@@ -447,7 +451,8 @@ PetscErrorCode SlumpSceneCreate_ChupinColumn(SlumpScene scene, SlumpProblem prob
   c->freg   = 1e-3;
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologySetType(rheo, plast == PLASTICITY_DP ? "dp_bercovier" : "litho_bercovier"));
-  if (plast == PLASTICITY_PL) {
+  c->surface_feed = plast == PLASTICITY_PL ? PETSC_TRUE : PETSC_FALSE;
+  if (plast != PLASTICITY_DP) {
     PetscCall(SlumpRheologySetParameter(rheo, "density", 1500.0));
     PetscCall(SlumpRheologySetParameter(rheo, "gravity", 9.81));
     PetscCall(SlumpRheologySetParameter(rheo, "height", hi));
