@@ -1389,9 +1389,11 @@ def test_chupin_lithostatic():
     the current surface height above each point, handed to the kernels
     after every step (pl), the material beside the column carries no
     overburden and the column fails at its foot: the front advances by more
-    than 0.04 m. Volume drift <= 2 % in both. This checks that the surface
-    feed reaches the yield stress and changes the dynamics, not an agreement
-    with the slides (they give figures only)."""
+    than 0.04 m. Volume drift <= 2 % in both. The pl run on 2 ranks (the
+    surface is gathered from both) takes the same steps and gives the same
+    front and kinetic energy to 1e-8. This checks that the surface feed
+    reaches the yield stress and changes the dynamics, not an agreement with
+    the slides (they give figures only)."""
     out = {}
     for plast in ("pl_fixed", "pl"):
         d = work("chupin_" + plast)
@@ -1407,6 +1409,12 @@ def test_chupin_lithostatic():
         fail("pl_fixed: the column moved (front %.4f m > 0.202 m or kinetic energy %.3e >= 1e-3 J/m)" % (f["front"], f["kinetic_energy"]))
     if not out["pl"]["front"] > 0.24:
         fail("pl: the front %.4f m did not advance by 0.04 m from r_i = 0.20 m" % out["pl"]["front"])
+    d = work("chupin_pl_np2")
+    run("chupin_column", ["-plasticity", "pl", "-cell_size", "0.028", "-time_final", "0.5", "-output_fields", "0"], d, ranks=2)
+    s1, s2 = out["pl"], summary(d)
+    print("pl on 2 ranks: %d steps (1 rank: %d), front %.10f (%.10f), kinetic energy %.10e (%.10e)" % (s2["steps"], s1["steps"], s2["front"], s1["front"], s2["kinetic_energy"], s1["kinetic_energy"]))
+    if s2["steps"] != s1["steps"] or abs(s2["front"] - s1["front"]) > 1e-8 * s1["front"] or abs(s2["kinetic_energy"] - s1["kinetic_energy"]) > 1e-8 * s1["kinetic_energy"]:
+        fail("pl: 2 ranks differ from 1 rank")
 
 
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
