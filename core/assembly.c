@@ -157,17 +157,19 @@ PetscErrorCode SlumpAssemblyDestroy(SlumpAssembly *a)
 typedef struct {
   PetscReal   detJ, x[MAXQ * 3], G[MAXQ * MAXNB * 3]; /* physical gradients */
   PetscScalar u[MAXQ * 8], ut[MAXQ * 8], ux[MAXQ * 24];
+  PetscScalar ul[MAXQ * 8], ulx[MAXQ * 24]; /* the lagged state (auxiliary fields) */
 } CellData;
 
-static inline void EvaluateCell(SlumpAssembly a, PetscInt c, const PetscScalar *xa, const PetscScalar *ta, CellData *cd)
+static inline void EvaluateCell(SlumpAssembly a, PetscInt c, const PetscScalar *xa, const PetscScalar *ta, const PetscScalar *la, CellData *cd)
 {
   const PetscInt   dim = a->dim, ntot = a->uOff[a->Nf], N = a->NbTot, *li = &a->lidx[c * N];
   const PetscReal *g = &a->geom[c * GEOMSIZE(dim)], *v0 = g, *J = g + dim, *invJ = g + dim + dim * dim;
-  PetscScalar      xv[MAXNB], tv[MAXNB];
+  PetscScalar      xv[MAXNB], tv[MAXNB], lv[MAXNB];
   cd->detJ = g[dim + 2 * dim * dim];
   for (PetscInt b = 0; b < N; ++b) {
     xv[b] = xa[li[b]];
     tv[b] = ta ? ta[li[b]] : 0.0;
+    lv[b] = la ? la[li[b]] : 0.0;
   }
   for (PetscInt q = 0; q < a->Nq; ++q) {
     PetscScalar *u = &cd->u[q * 8], *ut = &cd->ut[q * 8], *ux = &cd->ux[q * 24];
@@ -175,8 +177,9 @@ static inline void EvaluateCell(SlumpAssembly a, PetscInt c, const PetscScalar *
       cd->x[q * 3 + d] = v0[d];
       for (PetscInt e = 0; e < dim; ++e) cd->x[q * 3 + d] += J[d * dim + e] * (a->xi[q * dim + e] + 1.0);
     }
-    for (PetscInt i = 0; i < ntot; ++i) u[i] = ut[i] = 0.0;
-    for (PetscInt i = 0; i < ntot * dim; ++i) ux[i] = 0.0;
+    PetscScalar *ul = &cd->ul[q * 8], *ulx = &cd->ulx[q * 24];
+    for (PetscInt i = 0; i < ntot; ++i) u[i] = ut[i] = ul[i] = 0.0;
+    for (PetscInt i = 0; i < ntot * dim; ++i) ux[i] = ulx[i] = 0.0;
     for (PetscInt f = 0; f < a->Nf; ++f) {
       for (PetscInt b = 0; b < a->Nb[f]; ++b) {
         const PetscInt   B = a->off[f] + b, c = a->comp[B];
@@ -189,6 +192,10 @@ static inline void EvaluateCell(SlumpAssembly a, PetscInt c, const PetscScalar *
         u[a->uOff[f] + c] += ph * xv[B];
         ut[a->uOff[f] + c] += ph * tv[B];
         for (PetscInt d = 0; d < dim; ++d) ux[a->uOff_x[f] + c * dim + d] += G[d] * xv[B];
+        if (la) {
+          ul[a->uOff[f] + c] += ph * lv[B];
+          for (PetscInt d = 0; d < dim; ++d) ulx[a->uOff_x[f] + c * dim + d] += G[d] * lv[B];
+        }
       }
     }
   }
@@ -210,21 +217,25 @@ PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, V
   for (PetscInt f = 0; f < a->Nf; ++f) PetscCall(PetscDSGetResidual(ds, f, &f0[f], &f1[f]));
   PetscCall(PetscLogEventBegin(SLUMP_Residual, 0, 0, 0, 0));
   PetscCall(PetscMalloc1(1, &cd));
-  const PetscScalar *xa, *ta = NULL;
+  const PetscScalar *xa, *ta = NULL, *la = NULL;
   PetscScalar       *fa;
+  const PetscInt     NfA = prob->lagSet ? a->Nf : 0;
+  const PetscInt    *aO = NfA ? a->uOff : NULL, *aOx = NfA ? a->uOff_x : NULL;
   PetscCall(VecGetArrayRead(locX, &xa));
   if (locXdot) PetscCall(VecGetArrayRead(locXdot, &ta));
+  if (NfA) PetscCall(VecGetArrayRead(prob->locLag, &la));
   PetscCall(VecGetArray(locF, &fa));
   for (PetscInt c = 0; c < a->ncell; ++c) {
     PetscScalar ev[MAXNB];
-    EvaluateCell(a, c, xa, ta, cd);
+    EvaluateCell(a, c, xa, ta, la, cd);
     PetscCall(PetscArrayzero(ev, a->NbTot));
     for (PetscInt q = 0; q < a->Nq; ++q) {
       const PetscReal wq = a->w[q] * cd->detJ;
       for (PetscInt f = 0; f < a->Nf; ++f) {
         PetscScalar r0[3] = {0, 0, 0}, r1[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-        if (f0[f]) f0[f](dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r0);
-        if (f1[f]) f1[f](dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r1);
+        const PetscScalar *ul = NfA ? &cd->ul[q * 8] : NULL, *ulx = NfA ? &cd->ulx[q * 24] : NULL;
+        if (f0[f]) f0[f](dim, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, ul, NULL, ulx, t, &cd->x[q * 3], nc, constants, r0);
+        if (f1[f]) f1[f](dim, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, ul, NULL, ulx, t, &cd->x[q * 3], nc, constants, r1);
         for (PetscInt b = 0; b < a->Nb[f]; ++b) {
           const PetscInt   B = a->off[f] + b, c = a->comp[B];
           const PetscReal *G = &cd->G[(q * MAXNB + B) * 3];
@@ -237,6 +248,7 @@ PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, V
     for (PetscInt b = 0; b < a->NbTot; ++b) fa[a->lidx[c * a->NbTot + b]] += ev[b];
   }
   PetscCall(VecRestoreArray(locF, &fa));
+  if (NfA) PetscCall(VecRestoreArrayRead(prob->locLag, &la));
   if (locXdot) PetscCall(VecRestoreArrayRead(locXdot, &ta));
   PetscCall(VecRestoreArrayRead(locX, &xa));
   PetscCall(PetscFree(cd));
@@ -310,13 +322,16 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
   PetscCall(PetscLogEventBegin(SLUMP_Jacobian, 0, 0, 0, 0));
   PetscCall(MatZeroEntries(Jac));
   PetscCall(PetscMalloc1(1, &cd));
-  const PetscScalar *xa, *ta = NULL;
+  const PetscScalar *xa, *ta = NULL, *la = NULL;
+  const PetscInt     NfA = prob->lagSet ? a->Nf : 0;
+  const PetscInt    *aO = NfA ? a->uOff : NULL, *aOx = NfA ? a->uOff_x : NULL;
   PetscCall(VecGetArrayRead(locX, &xa));
   if (locXdot) PetscCall(VecGetArrayRead(locXdot, &ta));
+  if (NfA) PetscCall(VecGetArrayRead(prob->locLag, &la));
   for (PetscInt c = 0; c < a->ncell; ++c) {
     PetscScalar    em[MAXNB * MAXNB];
     const PetscInt N = a->NbTot;
-    EvaluateCell(a, c, xa, ta, cd);
+    EvaluateCell(a, c, xa, ta, la, cd);
     PetscCall(PetscArrayzero(em, N * N));
     for (PetscInt q = 0; q < a->Nq; ++q) {
       const PetscReal wq = a->w[q] * cd->detJ;
@@ -331,7 +346,7 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
             if (has[k]) {
               const PetscInt n = NcI * NcJ * (k == 0 ? 1 : (k == 3 ? dim * dim : dim));
               PetscCall(PetscArrayzero(gg[k], n));
-              g[f][h][k](dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, shift, &cd->x[q * 3], nc, constants, gg[k]);
+              g[f][h][k](dim, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, NfA ? &cd->ul[q * 8] : NULL, NULL, NfA ? &cd->ulx[q * 24] : NULL, t, shift, &cd->x[q * 3], nc, constants, gg[k]);
             }
           }
           if (!has[0] && !has[1] && !has[2] && !has[3]) continue;
@@ -365,6 +380,7 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
     }
     PetscCall(MatSetValues(Jac, N, &a->gidx[c * N], N, &a->gidx[c * N], em, ADD_VALUES));
   }
+  if (NfA) PetscCall(VecRestoreArrayRead(prob->locLag, &la));
   if (locXdot) PetscCall(VecRestoreArrayRead(locXdot, &ta));
   PetscCall(VecRestoreArrayRead(locX, &xa));
   PetscCall(PetscFree(cd));
@@ -394,7 +410,7 @@ PetscErrorCode SlumpAssembleIntegrals(SlumpProblem prob, PetscReal t, Vec locX, 
   const PetscScalar *xa;
   PetscCall(VecGetArrayRead(locX, &xa));
   for (PetscInt c = 0; c < a->ncell; ++c) {
-    EvaluateCell(a, c, xa, NULL, cd);
+    EvaluateCell(a, c, xa, NULL, NULL, cd);
     for (PetscInt q = 0; q < a->Nq; ++q) {
       const PetscReal wq = a->w[q] * cd->detJ;
       for (PetscInt k = 0; k < n; ++k) {

@@ -30,6 +30,7 @@ PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
   if (!p) PetscFunctionReturn(0);
   PetscCall(VecDestroy(&p->locX));
   PetscCall(VecDestroy(&p->locXdot));
+  PetscCall(VecDestroy(&p->locLag));
   PetscCall(VecDestroy(&p->locF));
   PetscCall(VecDestroy(&p->diagX));
   PetscCall(SlumpAssemblyDestroy(&p->assembly));

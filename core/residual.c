@@ -13,14 +13,49 @@ static PetscErrorCode InsertStaticBC(SlumpProblem prob, Vec loc)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode TakeLag(SlumpProblem);
+
 static PetscErrorCode FillLocal(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
 {
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemFillLocal(prob, t, X));
+  if (prob->lagOn && !prob->lagSet) PetscCall(TakeLag(prob));
   PetscCall(VecZeroEntries(prob->locXdot));
   if (Xdot) PetscCall(DMGlobalToLocal(prob->dm, Xdot, INSERT_VALUES, prob->locXdot));
   /* static conditions have zero time derivative: the zeroed entries stay */
   if (!prob->bcStatic) PetscCall(DMPlexInsertTimeDerivativeBoundaryValues(prob->dm, PETSC_TRUE, prob->locXdot, t, NULL, NULL, NULL));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetLagged(SlumpProblem prob, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  prob->lagOn = on;
+  if (!on) {
+    prob->lagSet = PETSC_FALSE;
+    PetscCall(VecDestroy(&prob->locLag));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* the lagged local vector from prob->locX (filled at t) */
+static PetscErrorCode TakeLag(SlumpProblem prob)
+{
+  PetscFunctionBeginUser;
+  if (!prob->locLag) PetscCall(VecDuplicate(prob->locX, &prob->locLag));
+  PetscCall(VecCopy(prob->locX, prob->locLag));
+  prob->lagSet = PETSC_TRUE;
+  /* PETSc's assembly (-assembly petsc) reads it as the auxiliary vector */
+  if (prob->petscAssembly) PetscCall(DMSetAuxiliaryVec(prob->dm, NULL, 0, 0, prob->locLag));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetLaggedState(SlumpProblem prob, PetscReal t, Vec X)
+{
+  PetscFunctionBeginUser;
+  if (!prob->lagOn) PetscFunctionReturn(0);
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(TakeLag(prob));
   PetscFunctionReturn(0);
 }
 

@@ -207,6 +207,17 @@ PETSC_EXTERN PetscErrorCode SlumpProblemPostStep(SlumpProblem prob, PetscInt ste
    the depth h(x) - y below the surface instead of a fixed height. The level
    set sets it between steps (SlumpLevelSetSetSurfaceFeed). */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetSurfaceHeight(SlumpProblem prob, PetscInt n, PetscReal x0, PetscReal dx, const PetscReal h[]);
+/* The state at the last accepted step as the kernels' auxiliary fields:
+   a[aOff[f]] and a_x[aOff_x[f]] hold field f of it with the same layout as
+   u and u_x (NfAux = Nf), for terms a scheme lags by one step (the
+   convective reinitialisation's direction and source, Riber eq. 2.18).
+   SlumpProblemSetLagged(prob, PETSC_TRUE) switches it on (the kernels
+   then get NfAux = Nf); until SlumpProblemSetLaggedState is first called,
+   the first state the residual or Jacobian is evaluated at is taken. The
+   integrators' between-step action (SlumpProblemPostStep) is where an
+   extra field updates it. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetLagged(SlumpProblem prob, PetscBool on);
+PETSC_EXTERN PetscErrorCode SlumpProblemSetLaggedState(SlumpProblem prob, PetscReal t, Vec X);
 /* Local solution at t with boundary values (read only; valid until the next call). */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLocalSolution(SlumpProblem prob, PetscReal t, Vec X, Vec *locX);
 /* Local indices of a field's dofs in the closure of every local cell

@@ -45,6 +45,10 @@ struct _n_SlumpProblem {
   PetscInt      jacmode;
   /* work */
   Vec           locX, locXdot, locF, diagX;
+  /* the state at the last accepted step (SlumpProblemSetLaggedState),
+     handed to the kernels as auxiliary fields; lagSet false: not yet taken */
+  PetscBool     lagOn, lagSet;
+  Vec           locLag;
   PetscInt      nres, njac;
   SlumpAssembly assembly;
   /* boundary values: when no condition depends on time they are projected

@@ -5,14 +5,15 @@
  * Transport residual (phi last field, a = velocity):
  *   r = phi_t + a . grad phi,   F = (w, r) + (tau a . grad w, r),
  *   tau = supg h_p / (2 |a|),  h_p = h / degree.
- * Convective reinitialisation (Riber's thesis eq. 2.16) on the filtered
- * state phi = E tanh(d/E):
- *   r = phi_t + (a + lambda U) . grad phi - lambda s(phi) (1 - (phi/E)^2),
- *   U = s(phi) grad phi/|grad phi|_0.1,  s(phi) = phi / sqrt(phi^2 + h^2),
- *   |g|_0.1 = sqrt(|g|^2 + 0.01) (see Convective()),
- * i.e. r = phi_t + a . grad phi + lambda s (|grad phi|^2/|grad phi|_0.1 - 1 + (phi/E)^2),
- * stabilised along a + lambda U. Both Jacobians are exact except that tau
- * is frozen. */
+ * Convective reinitialisation (Riber's thesis eq. 2.16, discretised as in
+ * its eq. 2.18) on the filtered state phi = E tanh(d/E):
+ *   r = phi_t + (a + lambda U^n) . grad phi - lambda s(phi^n) (1 - (phi^n/E)^2),
+ *   U^n = s(phi^n) grad phi^n/|grad phi^n|_0.1,  s(p) = p / sqrt(p^2 + h^2),
+ *   |g|_0.1 = sqrt(|g|^2 + 0.01) (see Convective()), phi^n the last
+ *   accepted step; SUPG along the flow a on r, streamline diffusion along
+ *   lambda U^n on the redistancing residual (see Convective()).
+ * The transport Jacobian freezes tau(a); the convective one is exact (its
+ * residual is linear in phi, and tau(a*) is differentiated in a). */
 #include "interfaceimpl.h"
 #include "slumppointwise.h"
 
@@ -96,84 +97,109 @@ static void g2_phi_u(SLUMP_PWJ_ARGS, PetscScalar g2[])
 }
 
 /* ---- convective reinitialisation ---- */
+/* Riber's eq. 2.18: the direction U and the source are taken from the state
+   of the last accepted step phi^n (the auxiliary fields, see
+   SlumpProblemSetLaggedState), the transport along a* = a + lambda U^n is
+   implicit:
+     r = phi_t + a* . grad phi - lambda s(phi^n) (1 - (phi^n/E)^2),
+   so the level-set equation is linear in phi within a step.
+   Stabilisation: F = (w, r) + (tau a . grad w, r) + (tau lambda U^n . grad w, rho),
+   rho = lambda U^n . grad phi - lambda s (1 - (phi^n/E)^2) the redistancing
+   residual: SUPG along the flow a, and streamline diffusion along lambda U^n
+   on rho, which vanishes on a transported filtered distance (diffusing the
+   steady residual r - phi_t instead shrank the circle by ~3 % a turn:
+   transport residual across a curved interface). SUPG along a* on the
+   whole residual made the stabilised mass matrix nearly singular where U^n
+   turns over a cell (IDA's steps fell to 1e-10); taking U, s and tau from
+   the current iterate instead of phi^n (fully implicit) failed in the same
+   way (docs/free-surface.md). */
 typedef struct {
-  PetscReal r, astar[3], drdg[3], dr_dphi, tau;
+  PetscReal astar[3], lamU[3], src, tau, dtau_dv[3];
 } ConvTerms;
 
-static inline void Convective(PetscInt dim, PetscScalar phi, PetscScalar phi_t, const PetscScalar phx[], const PetscReal vel[], const PetscScalar constants[], ConvTerms *ct)
+static inline void Convective(PetscInt dim, PetscScalar phin, const PetscScalar gn_[], const PetscReal vel[], const PetscScalar constants[], ConvTerms *ct)
 {
-  const PetscReal h = LSC(SLUMP_LS_H), lam = LSC(SLUMP_LS_LAMBDA), E = LSC(SLUMP_LS_E), p = PetscRealPart(phi);
-  PetscReal       n = 0.0, adv = 0.0;
+  const PetscReal h = LSC(SLUMP_LS_H), lam = LSC(SLUMP_LS_LAMBDA), E = LSC(SLUMP_LS_E), p = PetscRealPart(phin);
+  PetscReal       gn[3] = {0, 0, 0}, n2 = 0.0, A2 = 0.01 * lam * lam;
   for (PetscInt d = 0; d < dim; ++d) {
-    n += PetscRealPart(phx[d] * phx[d]);
-    adv += vel[d] * PetscRealPart(phx[d]);
+    gn[d] = PetscRealPart(gn_[d]);
+    n2 += gn[d] * gn[d];
   }
-  /* U = s grad phi / |grad phi|_delta with |g|_delta = sqrt(|g|^2 + delta^2),
+  /* U = s grad phi / |grad phi|_delta, |g|_delta = sqrt(|g|^2 + delta^2),
      delta = 0.1: where the filter saturates grad phi -> 0 and the direction
-     of U is undefined; unregularised, IDA's steps fell to 1e-6 on the
-     rotating circle (Newton failures). It changes the slope at the
-     interface by ~delta^2/2 = 0.5 %. */
-  const PetscReal delta = 0.1, nd = PetscSqrtReal(n + delta * delta);
-  n                     = PetscSqrtReal(n);
-  const PetscReal q = p * p + h * h, s = p / PetscSqrtReal(q), sp = h * h / (q * PetscSqrtReal(q));
-  const PetscReal m = n * n / nd - 1.0 + (p / E) * (p / E);
-  ct->r             = PetscRealPart(phi_t) + adv + lam * s * m;
-  for (PetscInt d = 0; d < dim; ++d) ct->astar[d] = vel[d] + lam * s * PetscRealPart(phx[d]) / nd;
-  ct->dr_dphi = lam * (sp * m + s * 2.0 * p / (E * E));
-  /* d(n^2/nd)/d grad phi = (2/nd - n^2/nd^3) grad phi */
-  for (PetscInt d = 0; d < dim; ++d) ct->drdg[d] = vel[d] + lam * s * (2.0 / nd - n * n / (nd * nd * nd)) * PetscRealPart(phx[d]);
-  /* tau with |a*| floored smoothly at lambda/10: a* = a + lambda U vanishes
-     on curves, where tau a* = (h/2) a* / abs(a*) would jump (Newton failed there) */
-  {
-    PetscReal n2 = 0.01 * lam * lam;
-    for (PetscInt d = 0; d < dim; ++d) n2 += ct->astar[d] * ct->astar[d];
-    ct->tau = n2 > 0 ? LSC(SLUMP_LS_SUPG) * h / LSC(SLUMP_LS_DEG) / (2.0 * PetscSqrtReal(n2)) : 0.0;
+     is undefined; U then fades out instead. At steady state the slope is
+     |g|^2/|g|_delta = 1 - (phi/E)^2, 0.5 % steeper at the interface. */
+  const PetscReal delta = 0.1, nd = PetscSqrtReal(n2 + delta * delta), s = p / PetscSqrtReal(p * p + h * h);
+  for (PetscInt d = 0; d < 3; ++d) ct->astar[d] = ct->lamU[d] = ct->dtau_dv[d] = 0.0;
+  for (PetscInt d = 0; d < dim; ++d) {
+    ct->lamU[d]  = lam * s * gn[d] / nd;
+    ct->astar[d] = vel[d] + ct->lamU[d];
+    A2 += ct->astar[d] * ct->astar[d];
   }
+  ct->src = lam * s * (1.0 - (p / E) * (p / E));
+  /* tau with |a*| floored smoothly at lambda/10: a* vanishes on curves,
+     where tau a* = (h/2) a* / abs(a*) would jump; d tau/d a = -tau a* / A2 */
+  ct->tau = A2 > 0 ? LSC(SLUMP_LS_SUPG) * h / LSC(SLUMP_LS_DEG) / (2.0 * PetscSqrtReal(A2)) : 0.0;
+  if (A2 > 0)
+    for (PetscInt d = 0; d < dim; ++d) ct->dtau_dv[d] = -ct->tau * ct->astar[d] / A2;
 }
 
+/* phi^n and grad phi^n from the auxiliary fields (the current state if the
+   lag has not been taken, e.g. in a diagnostic pass); r the residual, rho
+   the redistancing residual, sd[d] = a_d r + lambda U_d rho the
+   stabilisation's flux over tau */
 #define CONV_SETUP \
   LS_SETUP; \
   ConvTerms ct; \
-  Convective(dim, phi, phi_t, phx, vel, constants, &ct); \
+  Convective(dim, NfAux ? a[aOff[F_]] : phi, NfAux ? &a_x[aOff_x[F_]] : phx, vel, constants, &ct); \
+  PetscScalar r = phi_t - ct.src, rho = -ct.src, sd[3]; \
+  for (PetscInt d = 0; d < dim; ++d) { \
+    r += ct.astar[d] * phx[d]; \
+    rho += ct.lamU[d] * phx[d]; \
+  } \
+  for (PetscInt d = 0; d < dim; ++d) sd[d] = vel[d] * r + ct.lamU[d] * rho; \
   const PetscBool full = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0; \
-  (void)full
+  (void)full; \
+  (void)sd; \
+  (void)rho
 
 static void f0_phi_conv(SLUMP_PW_ARGS, PetscScalar f0[])
 {
   CONV_SETUP;
-  f0[0] = ct.r;
+  f0[0] = r;
 }
 static void f1_phi_conv(SLUMP_PW_ARGS, PetscScalar f1[])
 {
   CONV_SETUP;
-  for (PetscInt d = 0; d < dim; ++d) f1[d] = ct.tau * ct.astar[d] * ct.r;
+  for (PetscInt d = 0; d < dim; ++d) f1[d] = ct.tau * sd[d];
 }
 static void g0_phi_phi_conv(SLUMP_PWJ_ARGS, PetscScalar g0[])
 {
-  CONV_SETUP;
-  g0[0] = u_tShift + (full ? ct.dr_dphi : 0.0);
+  g0[0] = u_tShift;
 }
 static void g1_phi_phi_conv(SLUMP_PWJ_ARGS, PetscScalar g1[])
 {
   CONV_SETUP;
-  for (PetscInt d = 0; d < dim; ++d) g1[d] = full ? ct.drdg[d] : 0.0;
+  for (PetscInt d = 0; d < dim; ++d) g1[d] = full ? ct.astar[d] : 0.0;
 }
+/* d f1_d / d phi: through phi_t only */
 static void g2_phi_phi_conv(SLUMP_PWJ_ARGS, PetscScalar g2[])
 {
   CONV_SETUP;
-  for (PetscInt d = 0; d < dim; ++d) g2[d] = ct.tau * ct.astar[d] * (u_tShift + (full ? ct.dr_dphi : 0.0));
+  for (PetscInt d = 0; d < dim; ++d) g2[d] = ct.tau * vel[d] * u_tShift;
 }
 static void g3_phi_phi_conv(SLUMP_PWJ_ARGS, PetscScalar g3[])
 {
   CONV_SETUP;
   for (PetscInt d = 0; d < dim; ++d)
-    for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = full ? ct.tau * ct.astar[d] * ct.drdg[e] : 0.0;
+    for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = full ? ct.tau * (vel[d] * ct.astar[e] + ct.lamU[d] * ct.lamU[e]) : 0.0;
 }
+/* d f1_d / d u_c: r and a* are linear in u, tau depends on it through |a*| */
 static void g2_phi_u_conv(SLUMP_PWJ_ARGS, PetscScalar g2[])
 {
   CONV_SETUP;
   for (PetscInt c = 0; c < dim; ++c)
-    for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = full ? ct.tau * ((c == d ? ct.r : 0.0) + ct.astar[d] * PetscRealPart(phx[c])) : 0.0;
+    for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = full ? ct.tau * ((c == d ? r : 0.0) + vel[d] * phx[c]) + ct.dtau_dv[c] * sd[d] : 0.0;
 }
 
 static PetscErrorCode SetCoupling(SlumpLevelSet ls, PetscDS ds, PetscInt field, PetscPointJac g2u)
@@ -196,6 +222,7 @@ PetscErrorCode SlumpReinitSetPointwise_Transport(SlumpLevelSet ls, PetscDS ds, P
 PetscErrorCode SlumpReinitSetPointwise_Convective(SlumpLevelSet ls, PetscDS ds, PetscInt field)
 {
   PetscFunctionBeginUser;
+  PetscCall(SlumpProblemSetLagged(ls->prob, PETSC_TRUE));
   PetscCall(PetscDSSetResidual(ds, field, f0_phi_conv, f1_phi_conv));
   PetscCall(PetscDSSetJacobian(ds, field, field, g0_phi_phi_conv, g1_phi_phi_conv, g2_phi_phi_conv, g3_phi_phi_conv));
   PetscCall(SetCoupling(ls, ds, field, g2_phi_u_conv));
@@ -231,8 +258,8 @@ PetscErrorCode SlumpReinitRegister(const char name[], const char description[], 
 PetscErrorCode SlumpReinitRegisterAll(void)
 {
   static PetscBool done = PETSC_FALSE;
-  SlumpReinitOps   none = {NULL, NULL, PETSC_FALSE}, conv = {SlumpReinitSetPointwise_Convective, NULL, PETSC_TRUE};
-  SlumpReinitOps   geo = {NULL, SlumpReinitApply_Redistance, PETSC_FALSE}, hj = {NULL, SlumpReinitApply_HamiltonJacobi, PETSC_FALSE};
+  SlumpReinitOps   none = {NULL, NULL, PETSC_FALSE, PETSC_FALSE}, conv = {SlumpReinitSetPointwise_Convective, NULL, PETSC_TRUE, PETSC_TRUE};
+  SlumpReinitOps   geo = {NULL, SlumpReinitApply_Redistance, PETSC_FALSE, PETSC_FALSE}, hj = {NULL, SlumpReinitApply_HamiltonJacobi, PETSC_FALSE, PETSC_FALSE};
   PetscFunctionBeginUser;
   if (done) PetscFunctionReturn(0);
   done = PETSC_TRUE;
@@ -421,6 +448,8 @@ static PetscErrorCode PostStep(void *ctx, SlumpProblem prob, PetscInt step, Pets
   /* every step: a lag of 5 or 20 steps let the front run on ahead of its
      own lagged surface, with little yield stress (chupin_column -plasticity pl) */
   PetscCall(SlumpLevelSetUpdateSurface(ls, t, X));
+  /* the lagged terms of the next step (convective) */
+  if (ls->reinit.lagged) PetscCall(SlumpProblemSetLaggedState(prob, t, X));
   PetscFunctionReturn(0);
 }
 

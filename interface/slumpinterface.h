@@ -39,6 +39,9 @@ typedef struct {
   PetscErrorCode (*apply)(SlumpLevelSet ls, SlumpProblem prob, PetscReal t, Vec X, PetscBool *changed);
   /* the state holds the filtered E tanh(d/E) instead of the distance d */
   PetscBool filtered;
+  /* the kernels read the state of the last accepted step as auxiliary
+     fields (SlumpProblemSetLaggedState, updated after every step) */
+  PetscBool lagged;
 } SlumpReinitOps;
 
 PETSC_EXTERN PetscErrorCode SlumpReinitRegister(const char name[], const char description[], const SlumpReinitOps *ops);
