@@ -42,11 +42,10 @@ PetscErrorCode SlumpProblemSetLagged(SlumpProblem prob, PetscBool on)
 static PetscErrorCode TakeLag(SlumpProblem prob)
 {
   PetscFunctionBeginUser;
+  PetscCheck(!prob->petscAssembly, prob->comm, PETSC_ERR_USER_INPUT, "-assembly petsc does not hand the last step's state to the kernels, which this problem needs (e.g. -reinit convective); use -assembly slump");
   if (!prob->locLag) PetscCall(VecDuplicate(prob->locX, &prob->locLag));
   PetscCall(VecCopy(prob->locX, prob->locLag));
   prob->lagSet = PETSC_TRUE;
-  /* PETSc's assembly (-assembly petsc) reads it as the auxiliary vector */
-  if (prob->petscAssembly) PetscCall(DMSetAuxiliaryVec(prob->dm, NULL, 0, 0, prob->locLag));
   PetscFunctionReturn(0);
 }
 
