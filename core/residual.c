@@ -30,6 +30,7 @@ static PetscErrorCode FillLocal(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
 PetscErrorCode SlumpProblemSetLagged(SlumpProblem prob, PetscBool on)
 {
   PetscFunctionBeginUser;
+  PetscCheck(!on || !prob->petscAssembly, prob->comm, PETSC_ERR_USER_INPUT, "-assembly petsc does not hand the last step's state to the kernels, which this problem needs (e.g. -reinit convective); use -assembly slump");
   prob->lagOn = on;
   if (!on) {
     prob->lagSet = PETSC_FALSE;

@@ -873,6 +873,7 @@ INPUT_CASES = [
     ("unknown_rheology", ["-scene", "poiseuille", "-rheology_type", "no_such_model"], "-rheology_type"),
     ("unknown_reinit", ["-scene", "levelset_rotation", "-reinit", "no_such_method"], "-reinit"),
     ("levelset_degree", ["-scene", "levelset_rotation", "-levelset_degree", "3"], "-levelset_degree"),
+    ("convective_petsc_assembly", ["-scene", "levelset_rotation", "-reinit", "convective", "-assembly", "petsc"], "-assembly"),
     ("negative_viscosity", ["-scene", "poiseuille", "-rheology_viscosity", "-1"], "-rheology_viscosity"),
     ("missing_mesh", ["-scene", "mms_stokes", "-mesh_file", "/nonexistent/mesh.msh"], "-mesh_file"),
     ("unreadable_options", ["-scene", "mms_stokes", "-options_file", "/nonexistent/opts.txt"], "-options_file"),
