@@ -443,7 +443,15 @@ static PetscErrorCode PostStep(void *ctx, SlumpProblem prob, PetscInt step, Pets
   SlumpLevelSet ls = (SlumpLevelSet)ctx;
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
-  if (ls->reinit.apply && ls->reinit_every > 0 && step > 0 && step % ls->reinit_every == 0) PetscCall(SlumpLevelSetReinitialise(ls, t, X, changed));
+  if (ls->reinit_every > 0 && step > 0 && step % ls->reinit_every == 0) {
+    if (ls->reinit.apply) PetscCall(SlumpLevelSetReinitialise(ls, t, X, changed));
+    else if (ls->volume_correction && ls->have_volume0) {
+      /* a method without a between-step action (none, convective): the
+         global volume correction alone, every reinit_every steps */
+      PetscCall(CorrectVolume(ls, t, X));
+      *changed = PETSC_TRUE;
+    }
+  }
   PetscCall(SlumpLevelSetRecordVolume(ls, t, X));
   /* every step: a lag of 5 or 20 steps let the front run on ahead of its
      own lagged surface, with little yield stress (chupin_column -plasticity pl) */
@@ -460,6 +468,7 @@ static PetscErrorCode View(void *ctx, SlumpProblem prob, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "level set: P%" PetscInt_FMT ", SUPG %g, h %g, reinitialisation %s", ls->degree, (double)ls->supg, (double)ls->h, ls->reinit_name));
   if (ls->reinit.filtered) PetscCall(PetscViewerASCIIPrintf(viewer, " (lambda %g, E %g)", (double)ls->lambda, (double)(ls->E_cells * ls->h)));
   if (ls->reinit.apply) PetscCall(PetscViewerASCIIPrintf(viewer, " every %" PetscInt_FMT " steps%s", ls->reinit_every, ls->volume_correction ? ", volume corrected" : ""));
+  else if (ls->volume_correction) PetscCall(PetscViewerASCIIPrintf(viewer, ", volume corrected every %" PetscInt_FMT " steps", ls->reinit_every));
   if (ls->surface_feed) PetscCall(PetscViewerASCIIPrintf(viewer, ", surface height fed to the kernels"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   PetscFunctionReturn(0);
@@ -537,7 +546,7 @@ PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls)
   PetscCall(PetscOptionsReal("-reinit_convective_lambda", "Redistancing speed lambda of the convective method", "", ls->lambda, &ls->lambda, NULL));
   PetscCall(PetscOptionsReal("-reinit_convective_width", "Filter width E of the convective method, in cells", "", ls->E_cells, &ls->E_cells, NULL));
   PetscCall(PetscOptionsInt("-reinit_hj_iterations", "Pseudo-time iterations of the Hamilton-Jacobi method", "", ls->hj_iterations, &ls->hj_iterations, NULL));
-  PetscCall(PetscOptionsBool("-reinit_volume_correction", "After each between-step reinitialisation, shift phi so that the material volume is the initial one", "", ls->volume_correction, &ls->volume_correction, NULL));
+  PetscCall(PetscOptionsBool("-reinit_volume_correction", "After each between-step reinitialisation (every -reinit_every steps for none and convective), shift phi so that the material volume is the initial one", "", ls->volume_correction, &ls->volume_correction, NULL));
   PetscCall(PetscOptionsBool("-levelset_surface_feed", "Hand the current free-surface height to the kernels after every step (lithostatic yield stress below the current surface)", "SlumpLevelSetSetSurfaceFeed", ls->surface_feed, &ls->surface_feed, NULL));
   PetscCall(PetscOptionsReal("-reinit_hj_cfl", "Pseudo-time step of the Hamilton-Jacobi method over the local mesh size", "", ls->hj_cfl, &ls->hj_cfl, NULL));
   PetscOptionsEnd();
