@@ -319,6 +319,14 @@ PetscErrorCode SlumpProblemSetTwoPhase(SlumpProblem prob, PetscReal rho_ambient,
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemSetTwoPhaseFilter(SlumpProblem prob, PetscReal E)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(E >= 0.0, prob->comm, PETSC_ERR_ARG_OUTOFRANGE, "The level set's filter width must be >= 0; got %g", (double)E);
+  prob->mixFilter = E;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemSetTwoPhaseViscosityShift(SlumpProblem prob, PetscReal shift)
 {
   PetscFunctionBeginUser;
@@ -629,6 +637,7 @@ PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
     prob->constants[SLUMP_C_MIX_ETA] = prob->etaAmbient;
     prob->constants[SLUMP_C_MIX_EPS]   = prob->mixEps;
     prob->constants[SLUMP_C_MIX_SHIFT] = prob->mixShift * prob->mixEps;
+    prob->constants[SLUMP_C_MIX_FILTER] = prob->mixFilter;
   }
   if (prob->wallFriction) {
     prob->constants[SLUMP_C_WALL_LAW]   = prob->wallLaw;

@@ -68,7 +68,8 @@ enum {
   SLUMP_C_SURF_N     = SLUMP_C_MIX_RHO + 7, /* free-surface table: samples (0: none)       */
   SLUMP_C_SURF_X0    = SLUMP_C_MIX_RHO + 8, /* free-surface table: first abscissa          */
   SLUMP_C_SURF_DX    = SLUMP_C_MIX_RHO + 9, /* free-surface table: spacing                 */
-  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 10,
+  SLUMP_C_MIX_FILTER = SLUMP_C_MIX_RHO + 10, /* two-phase: the level set is E tanh(d/E): E (0: a distance) */
+  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 11,
   /* the free-surface heights follow the fixed constants:
      constants[SLUMP_C_NUM + i] = h(x0 + i dx), i < constants[SLUMP_C_SURF_N] */
   SLUMP_C_SURF_MAX = 4096
@@ -192,6 +193,10 @@ PETSC_EXTERN PetscErrorCode SlumpProblemSetTwoPhase(SlumpProblem prob, PetscReal
    scale its friction coefficient by m in the band). Wall friction uses the
    same fraction. Option -mixing_viscosity_shift. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetTwoPhaseViscosityShift(SlumpProblem prob, PetscReal shift);
+/* The extra field is a filtered distance E tanh(d/E) (E > 0; 0: a distance):
+   the mixing then takes d = E atanh(phi/E). The level set sets it for the
+   convective reinitialisation. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetTwoPhaseFilter(SlumpProblem prob, PetscReal E);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetTwoPhase(SlumpProblem prob, PetscBool *on, PetscReal *rho_ambient, PetscReal *eta_ambient, PetscReal *width);
 /* Attach the extra field (before SlumpProblemSetUp); the problem owns ctx
    and calls ops->destroy. */

@@ -67,6 +67,7 @@ struct _n_SlumpProblem {
   /* two-phase mixing with the level set */
   PetscBool     twoPhase;
   PetscReal     rhoAmbient, etaAmbient, mixWidth, mixEps, mixShift;
+  PetscReal     mixFilter; /* E of a filtered level set (0: a distance) */
   PetscReal     materialArea; /* of the last diagnostics pass */
   /* wall friction (SlumpProblemAddFrictionBC) */
   PetscBool     wallFriction;

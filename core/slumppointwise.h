@@ -69,12 +69,22 @@ static inline void SlumpPwG3AntiPlane(PetscInt dim, const PetscScalar w_x[], con
     for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = r * w_x[d] * w_x[e] + (d == e ? eta : 0.0);
 }
 
-/* Two-phase mixing: the material fraction m = 1 - H(phi) of the smoothed
-   Heaviside of half-width w = constants[SLUMP_C_MIX_EPS] (phi < 0: material),
-   and dm/dphi. */
-static inline void SlumpPwMaterialFraction(PetscScalar phi, const PetscScalar constants[], PetscReal *m, PetscReal *dm)
+/* Two-phase mixing: the material fraction m = 1 - H(d - shift) of the
+   smoothed Heaviside of half-width w = constants[SLUMP_C_MIX_EPS] (d < 0:
+   material), and dm/dphi. d is the distance: phi itself, or
+   E atanh(phi/E) for a filtered level set (E = constants[SLUMP_C_MIX_FILTER]
+   > 0, the convective reinitialisation), whose phi never exceeds E and
+   would leave a band wider than E mixed for ever. */
+static inline void SlumpPwMaterialFractionShifted(PetscScalar phi, PetscReal shift, const PetscScalar constants[], PetscReal *m, PetscReal *dm)
 {
-  const PetscReal w = PetscRealPart(constants[SLUMP_C_MIX_EPS]), p = PetscRealPart(phi);
+  const PetscReal w = PetscRealPart(constants[SLUMP_C_MIX_EPS]), E = PetscRealPart(constants[SLUMP_C_MIX_FILTER]);
+  PetscReal       p = PetscRealPart(phi), dd = 1.0;
+  if (E > 0) {
+    const PetscReal r = PetscMax(-1.0 + 1e-12, PetscMin(1.0 - 1e-12, p / E));
+    p                 = 0.5 * E * PetscLogReal((1.0 + r) / (1.0 - r));
+    dd                = 1.0 / (1.0 - r * r);
+  }
+  p -= shift;
   if (p <= -w) {
     *m  = 1.0;
     *dm = 0.0;
@@ -83,8 +93,12 @@ static inline void SlumpPwMaterialFraction(PetscScalar phi, const PetscScalar co
     *dm = 0.0;
   } else {
     *m  = 0.5 * (1.0 - p / w - PetscSinReal(PETSC_PI * p / w) / PETSC_PI);
-    *dm = -0.5 * (1.0 + PetscCosReal(PETSC_PI * p / w)) / w;
+    *dm = -0.5 * (1.0 + PetscCosReal(PETSC_PI * p / w)) / w * dd;
   }
+}
+static inline void SlumpPwMaterialFraction(PetscScalar phi, const PetscScalar constants[], PetscReal *m, PetscReal *dm)
+{
+  SlumpPwMaterialFractionShifted(phi, 0.0, constants, m, dm);
 }
 
 /* The viscosity at a point: the model's, mixed with the ambient fluid's
@@ -153,7 +167,7 @@ static inline void SlumpPwG2(PetscInt dim, const PetscScalar u_x[], PetscScalar 
    of repose. */
 static inline void SlumpPwViscousFraction(PetscScalar phi, const PetscScalar constants[], PetscReal *m, PetscReal *dm)
 {
-  SlumpPwMaterialFraction(PetscRealPart(phi) - PetscRealPart(constants[SLUMP_C_MIX_SHIFT]), constants, m, dm);
+  SlumpPwMaterialFractionShifted(phi, PetscRealPart(constants[SLUMP_C_MIX_SHIFT]), constants, m, dm);
 }
 
 /* Two-phase: d f1[c,d] / d phi = dm/dphi (eta_model - eta_ambient) gd_cd. */

@@ -223,6 +223,8 @@ PetscErrorCode SlumpReinitSetPointwise_Convective(SlumpLevelSet ls, PetscDS ds, 
 {
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemSetLagged(ls->prob, PETSC_TRUE));
+  /* the two-phase mixing reads the distance out of the filtered state */
+  PetscCall(SlumpProblemSetTwoPhaseFilter(ls->prob, ls->E_cells * ls->h));
   PetscCall(PetscDSSetResidual(ds, field, f0_phi_conv, f1_phi_conv));
   PetscCall(PetscDSSetJacobian(ds, field, field, g0_phi_phi_conv, g1_phi_phi_conv, g2_phi_phi_conv, g3_phi_phi_conv));
   PetscCall(SetCoupling(ls, ds, field, g2_phi_u_conv));
