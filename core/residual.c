@@ -15,6 +15,14 @@ static PetscErrorCode InsertStaticBC(SlumpProblem prob, Vec loc)
 
 static PetscErrorCode TakeLag(SlumpProblem);
 
+/* PETSc's cell loop (-assembly petsc) passes no auxiliary fields */
+static PetscErrorCode CheckLagAssembly(SlumpProblem prob)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!prob->petscAssembly, prob->comm, PETSC_ERR_USER_INPUT, "-assembly petsc does not hand the last step's state to the kernels, which this problem needs (e.g. -reinit convective); use -assembly slump");
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode FillLocal(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
 {
   PetscFunctionBeginUser;
@@ -30,7 +38,7 @@ static PetscErrorCode FillLocal(SlumpProblem prob, PetscReal t, Vec X, Vec Xdot)
 PetscErrorCode SlumpProblemSetLagged(SlumpProblem prob, PetscBool on)
 {
   PetscFunctionBeginUser;
-  PetscCheck(!on || !prob->petscAssembly, prob->comm, PETSC_ERR_USER_INPUT, "-assembly petsc does not hand the last step's state to the kernels, which this problem needs (e.g. -reinit convective); use -assembly slump");
+  if (on) PetscCall(CheckLagAssembly(prob));
   prob->lagOn = on;
   if (!on) {
     prob->lagSet = PETSC_FALSE;
@@ -43,7 +51,7 @@ PetscErrorCode SlumpProblemSetLagged(SlumpProblem prob, PetscBool on)
 static PetscErrorCode TakeLag(SlumpProblem prob)
 {
   PetscFunctionBeginUser;
-  PetscCheck(!prob->petscAssembly, prob->comm, PETSC_ERR_USER_INPUT, "-assembly petsc does not hand the last step's state to the kernels, which this problem needs (e.g. -reinit convective); use -assembly slump");
+  PetscCall(CheckLagAssembly(prob));
   if (!prob->locLag) PetscCall(VecDuplicate(prob->locX, &prob->locLag));
   PetscCall(VecCopy(prob->locX, prob->locLag));
   prob->lagSet = PETSC_TRUE;
