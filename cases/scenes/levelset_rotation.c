@@ -66,6 +66,11 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
   PetscCall(SlumpLevelSetComputeGradientDeviation(ls, t, X, 3.0, &mean, &max));
   PetscCall(SlumpSceneAddResult(scene, "grad_dev_mean", mean));
   PetscCall(SlumpSceneAddResult(scene, "grad_dev_max", max));
+  /* the same in a band of one cell (a filtered level set is a distance
+     only well inside its width E) */
+  PetscCall(SlumpLevelSetComputeGradientDeviation(ls, t, X, 1.0, &mean, &max));
+  PetscCall(SlumpSceneAddResult(scene, "grad_dev_mean_1cell", mean));
+  PetscCall(SlumpSceneAddResult(scene, "grad_dev_max_1cell", max));
   /* the band after one more application of the between-step method (the
      state itself is left as it ends) */
   {
