@@ -305,7 +305,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       PetscCall(SlumpProblemPostStep(ti->prob, ti->stats.steps, tret, X, &changed));
       if (changed) {
         IDACHECK(IDAReInit(mem, tret, yy, yp));
-        IDACHECK(IDASetInitStep(mem, ti->h_last));
+        IDACHECK(IDASetInitStep(mem, ti->restart_step * ti->h_last));
         ti->stats.restarts++;
         nni_prev = netf_prev = ncfn_prev = 0;
       }

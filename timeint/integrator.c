@@ -22,6 +22,7 @@ PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti)
   s->max_steps   = 1000000;
   s->max_nonlin_iters = 4;
   s->nonlin_conv_coef = 0.33;
+  s->restart_step     = 1.0;
   s->stress_scale = 1.0;
   s->stats.h_min = PETSC_MAX_REAL;
   *ti            = s;
@@ -64,6 +65,16 @@ PetscErrorCode SlumpIntegratorGetTimes(SlumpIntegrator ti, PetscReal *t0, PetscR
   if (t0) *t0 = ti->t0;
   if (tfinal) *tfinal = ti->tfinal;
   if (dtout) *dtout = ti->dtout;
+  PetscFunctionReturn(0);
+}
+
+/* the first step after a between-step restart (a reinitialisation), as a
+   fraction of the last step: below 1 where the restart from the old time
+   derivative fails IDA's error test at the old step (bingham_dam_break) */
+PetscErrorCode SlumpIntegratorSetRestartStep(SlumpIntegrator ti, PetscReal fraction)
+{
+  PetscFunctionBeginUser;
+  ti->restart_step = fraction;
   PetscFunctionReturn(0);
 }
 
@@ -245,6 +256,7 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCall(PetscOptionsBool("-ida_exact_newton", "IDA: re-assemble the Jacobian at every Newton iterate (default: IDA's modified Newton)", "", ti->exact_newton, &ti->exact_newton, NULL));
   PetscCall(PetscOptionsReal("-ida_nonlin_conv_coef", "IDA: Newton stops when the correction is below this fraction of the error tolerance", "", ti->nonlin_conv_coef, &ti->nonlin_conv_coef, NULL));
   PetscCall(PetscOptionsInt("-ida_max_nonlin_iters", "IDA: Newton iterations per step before the step is cut", "", ti->max_nonlin_iters, &ti->max_nonlin_iters, NULL));
+  PetscCall(PetscOptionsReal("-ida_restart_step", "IDA: first step after a between-step restart (reinitialisation), as a fraction of the last step", "", ti->restart_step, &ti->restart_step, NULL));
   PetscCall(PetscOptionsInt("-time_max_steps", "Maximum number of steps", "", ti->max_steps, &ti->max_steps, NULL));
   {
     PetscReal thr  = ti->narrest ? ti->arrest[0].value : 0.0;
@@ -275,6 +287,7 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCheck(ti->type != SLUMP_INTEGRATOR_BDF2 || ti->dt > 0, comm, PETSC_ERR_USER_INPUT, "-time_integrator bdf2 needs a positive -time_dt");
   PetscCheck(ti->nonlin_conv_coef > 0 && ti->nonlin_conv_coef <= 1, comm, PETSC_ERR_USER_INPUT, "-ida_nonlin_conv_coef must lie in (0, 1]; got %g", (double)ti->nonlin_conv_coef);
   PetscCheck(ti->max_nonlin_iters > 0, comm, PETSC_ERR_USER_INPUT, "-ida_max_nonlin_iters must be a positive integer");
+  PetscCheck(ti->restart_step > 0 && ti->restart_step <= 1, comm, PETSC_ERR_USER_INPUT, "-ida_restart_step must lie in (0, 1]; got %g", (double)ti->restart_step);
   PetscCheck(ti->max_steps > 0, comm, PETSC_ERR_USER_INPUT, "-time_max_steps must be a positive integer");
   PetscFunctionReturn(0);
 }

@@ -45,6 +45,7 @@ PETSC_EXTERN PetscErrorCode SlumpIntegratorGetType(SlumpIntegrator ti, SlumpInte
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTimes(SlumpIntegrator ti, PetscReal t0, PetscReal tfinal, PetscReal dtout);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTimes(SlumpIntegrator ti, PetscReal *t0, PetscReal *tfinal, PetscReal *dtout);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetRestartStep(SlumpIntegrator ti, PetscReal fraction);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTolerances(SlumpIntegrator ti, PetscReal rtol, PetscReal atol);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTolerances(SlumpIntegrator ti, PetscReal *rtol, PetscReal *atol);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTimeStep(SlumpIntegrator ti, PetscReal dt);

@@ -42,6 +42,7 @@ struct _n_SlumpIntegrator {
   PetscInt             order_last, max_steps, max_nonlin_iters;
   PetscBool            exact_newton, linesearch;
   PetscReal            nonlin_conv_coef;
+  PetscReal            restart_step; /* first step after a between-step restart, as a fraction of the last step */
   PetscInt             narrest;
   SlumpArrestCriterion arrest[16];
   SlumpArrestStop      arrest_stop;
