@@ -1299,6 +1299,53 @@ def test_column_collapse():
         fail("the deposit ends at x = %.3f, the front is at %.3f" % (last, s["front"]))
 
 
+def test_bingham_dam_break_units():
+    """bingham_dam_break in the thesis' viscous units (time eta_p/(rho g h_i),
+    weight 1, inertia Re): at Re = 1e-3 the flow is quasi-static, so on
+    40 x 15 cells to t = 0.5 t_c (outputs every 0.05) it must (1) move on
+    the viscous time scale (front beyond 1.02 h_i: in the old units,
+    time sqrt(h_i/g), it had reached 1.05 only by t = 943); (2) not depend
+    on Re: Re = 1e-4 gives the same front, axis height and mean shear rate
+    to 1e-3 relative and the same kinetic energy over Re to 2 %; (3) turn
+    the potential energy released into dissipation in the material
+    (the kinetic energy is ~1e-6 of it) to 5 % (measured 4.1 % short:
+    the series' dissipation leaves out the Navier floor's friction, and the
+    trapezoidal rule on outputs every 0.05 t_c misses the start-up; neither
+    is measured apart); (4) keep the volume within 2 %."""
+    w = work("bingham_dam_break_units")
+    opts = ["-mesh_nx", "40", "-mesh_ny", "15", "-output_fields", "0", "-time_final", "0.5", "-time_output_dt", "0.05"]
+    res = {}
+    for re in ("1e-3", "1e-4"):
+        d = os.path.join(w, "re" + re)
+        run("bingham_dam_break", opts + ["-re", re], d)
+        s, ser = summary(d), series(d)
+        diss, prev = 0.0, None
+        for r in ser:
+            if prev:
+                diss += 0.5 * (r["t"] - prev["t"]) * (r["dissipation"] + prev["dissipation"])
+            prev = r
+        released = ser[0]["potential_energy"] - ser[-1]["potential_energy"]
+        res[re] = dict(front=s["front"], axis=s["height_axis"], gdot=ser[-1]["mean_shear_rate"],
+                       ke_re=ser[-1]["kinetic_energy"] / float(re), released=released, diss=diss,
+                       drift=s["volume_drift_max"], steps=s["steps"], wall=s["wall_time"])
+        print("Re = %s: front %.6f, axis %.6f, mean shear rate %.6e, KE/Re %.4e, potential energy released %.5e, "
+              "dissipated %.5e, drift %.2e, %d steps, %.1f s" % (re, s["front"], s["height_axis"], res[re]["gdot"], res[re]["ke_re"],
+                                                                released, diss, s["volume_drift_max"], s["steps"], s["wall_time"]))
+    a, b = res["1e-3"], res["1e-4"]
+    if not a["front"] > 1.02:
+        fail("the front is at %.4f after 0.5 t_c: the column does not move on the viscous time scale" % a["front"])
+    for k in ("front", "axis", "gdot"):
+        if not abs(a[k] / b[k] - 1) <= 1e-3:
+            fail("%s differs between Re = 1e-3 and 1e-4: %.6e vs %.6e" % (k, a[k], b[k]))
+    if not abs(a["ke_re"] / b["ke_re"] - 1) <= 0.02:
+        fail("kinetic energy over Re differs: %.4e vs %.4e" % (a["ke_re"], b["ke_re"]))
+    for re, r in res.items():
+        if not abs(r["diss"] / r["released"] - 1) <= 0.05:
+            fail("Re = %s: dissipation %.5e vs potential energy released %.5e" % (re, r["diss"], r["released"]))
+        if not r["drift"] <= 0.02:
+            fail("Re = %s: volume drift %.3e > 2 %%" % (re, r["drift"]))
+
+
 def test_stability_column_collapse_air():
     """Hard ratios over a collapse: column_collapse a = 0.5 with the ambient
     viscosity lowered to 1e-6 (1e-6 of the rheology's floor-free viscosity
