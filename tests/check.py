@@ -878,6 +878,7 @@ INPUT_CASES = [
     ("missing_mesh", ["-scene", "mms_stokes", "-mesh_file", "/nonexistent/mesh.msh"], "-mesh_file"),
     ("unreadable_options", ["-scene", "mms_stokes", "-options_file", "/nonexistent/opts.txt"], "-options_file"),
     ("bad_rtol", ["-scene", "decay", "-time_rtol", "2"], "-time_rtol"),
+    ("bad_restart_step", ["-scene", "decay", "-ida_restart_step", "0"], "-ida_restart_step"),
     ("bad_arrest", ["-scene", "couette_cessation", "-arrest", "speed:1e-3"], "-arrest"),
     ("bad_creep", ["-scene", "couette_cessation", "-arrest", "kinetic_energy:1:creep"], "-arrest"),
 ]
