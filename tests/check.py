@@ -45,6 +45,11 @@ def series(outdir):
         return [{k: float(v) for k, v in r.items()} for r in csv.DictReader(f)]
 
 
+def dissipated(ser):
+    """The dissipation in series.csv integrated over the outputs (trapezoidal rule)."""
+    return sum(0.5 * (b["t"] - a["t"]) * (a["dissipation"] + b["dissipation"]) for a, b in zip(ser, ser[1:]))
+
+
 def _isnum(v):
     try:
         float(v)
@@ -1157,11 +1162,7 @@ def test_dam_break():
     if not worst <= 1.0:
         fail("the front outran Ritter's inviscid front: (x_f - r_i) / (2 sqrt(g h_i) t) = %.3f > 1" % worst)
     ser = series(w)
-    ep0, diss, prev = ser[0]["potential_energy"], 0.0, None
-    for r in ser:
-        if prev:
-            diss += 0.5 * (r["t"] - prev["t"]) * (r["dissipation"] + prev["dissipation"])
-        prev = r
+    ep0, diss = ser[0]["potential_energy"], dissipated(ser)
     released = ep0 - ser[-1]["potential_energy"]
     imbalance = (released - ser[-1]["kinetic_energy"] - diss) / released
     print("dam_break 21 x 22, t = 0.2 s: front Z = %.3f, axis height H = %.3f, volume drift max %.3e (volume error %.3e), "
@@ -1320,11 +1321,7 @@ def test_bingham_dam_break_units():
         d = os.path.join(w, "re" + re)
         run("bingham_dam_break", opts + ["-re", re], d)
         s, ser = summary(d), series(d)
-        diss, prev = 0.0, None
-        for r in ser:
-            if prev:
-                diss += 0.5 * (r["t"] - prev["t"]) * (r["dissipation"] + prev["dissipation"])
-            prev = r
+        diss = dissipated(ser)
         released = ser[0]["potential_energy"] - ser[-1]["potential_energy"]
         res[re] = dict(front=s["front"], axis=s["height_axis"], gdot=ser[-1]["mean_shear_rate"],
                        ke_re=ser[-1]["kinetic_energy"] / float(re), released=released, diss=diss,
@@ -1398,11 +1395,7 @@ def test_column_chute():
     t0, v = math.sqrt(0.5), math.sqrt(0.5)
     ke_before = 0.5 * 1.0 * 1.0 * v * v
     ke0, ep0 = ser[0]["kinetic_energy"], ser[0]["potential_energy"]
-    diss, prev = 0.0, None
-    for r in ser:
-        if prev:
-            diss += 0.5 * (r["t"] - prev["t"]) * (r["dissipation"] + prev["dissipation"])
-        prev = r
+    diss = dissipated(ser)
     budget = ke0 + ep0 - ser[-1]["potential_energy"]
     imbalance = (budget - ser[-1]["kinetic_energy"] - diss) / budget
     fit = 1.72
