@@ -211,6 +211,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
       PetscCall(SlumpIntegratorSetTolerances(ti, scene->rtol > 0 ? scene->rtol : rtol, scene->atol > 0 ? scene->atol : atol));
     }
     if (scene->restart_step > 0) PetscCall(SlumpIntegratorSetRestartStep(ti, scene->restart_step));
+    if (scene->linesearch) PetscCall(SlumpIntegratorSetLineSearch(ti, PETSC_TRUE));
     PetscCall(SlumpIntegratorSetFromOptions(ti));
     PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol));
     PetscCall(SlumpIntegratorGetType(ti, &itype));

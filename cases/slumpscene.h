@@ -18,6 +18,7 @@ struct _n_SlumpScene {
   PetscReal arrest_threshold;     /* default for -arrest_mean_shear_rate       */
   PetscReal rtol, atol;           /* defaults for -time_rtol, -time_atol (0: the integrator's) */
   PetscReal restart_step;         /* default for -ida_restart_step (0: the integrator's) */
+  PetscBool linesearch;           /* default for -ida_nonlinear_solver: linesearch (else newton) */
   PetscInt  mesh_n[2];            /* cells across (x, y) of the default mesh    */
   /* energy estimate T <= rho/(eta_p l1) ln(1 + eta_p l1 ||u0|| / (tau0 beta)):
      beta (0: unknown for this geometry) and the factor turning the L2 norm

@@ -56,8 +56,8 @@ enum {
   SLUMP_C_SCENE   = 4, /* four values a scene's own kernels may use       */
   SLUMP_C_RHEO    = 8, /* first rheology parameter                       */
   SLUMP_C_RHEO_MAX = 16,
-  SLUMP_C_FIELD   = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX, /* five values of the extra field (level set) */
-  SLUMP_C_FIELD_MAX = 5,
+  SLUMP_C_FIELD   = SLUMP_C_RHEO + SLUMP_C_RHEO_MAX, /* six values of the extra field (level set) */
+  SLUMP_C_FIELD_MAX = 6,
   SLUMP_C_MIX_RHO = SLUMP_C_FIELD + SLUMP_C_FIELD_MAX, /* two-phase: ambient density          */
   SLUMP_C_MIX_ETA = SLUMP_C_MIX_RHO + 1,               /* two-phase: ambient viscosity        */
   SLUMP_C_MIX_EPS = SLUMP_C_MIX_RHO + 2,               /* two-phase: Heaviside half-width     */

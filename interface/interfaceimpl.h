@@ -9,7 +9,8 @@ enum {
   SLUMP_LS_SUPG   = 1, /* SUPG factor                                */
   SLUMP_LS_LAMBDA = 2, /* convective redistancing speed (0: off)     */
   SLUMP_LS_E      = 3, /* filter width E                             */
-  SLUMP_LS_DEG    = 4  /* polynomial degree of phi                   */
+  SLUMP_LS_DEG    = 4, /* polynomial degree of phi                   */
+  SLUMP_LS_SPEED  = 5  /* SUPG speed floor a0 (0: tau(a) frozen)     */
 };
 
 /* The nodal picture of phi used by the geometric operations: its dofs
@@ -28,7 +29,7 @@ struct _n_SlumpLevelSet {
   MPI_Comm       comm;
   SlumpProblem   prob;
   PetscInt       degree, field;
-  PetscReal      supg, h;
+  PetscReal      supg, supg_speed, h;
   /* reinitialisation */
   char           reinit_name[64];
   SlumpReinitOps reinit;

@@ -4,7 +4,7 @@
  *
  * Transport residual (phi last field, a = velocity):
  *   r = phi_t + a . grad phi,   F = (w, r) + (tau a . grad w, r),
- *   tau = supg h_p / (2 |a|),  h_p = h / degree.
+ *   tau = supg h_p / (2 |a|_0),  h_p = h / degree,  |a|_0 = sqrt(|a|^2 + a0^2).
  * Convective reinitialisation (Riber's thesis eq. 2.16, discretised as in
  * its eq. 2.18) on the filtered state phi = E tanh(d/E):
  *   r = phi_t + (a + lambda U^n) . grad phi - lambda s(phi^n) (1 - (phi^n/E)^2),
@@ -12,8 +12,12 @@
  *   |g|_0.1 = sqrt(|g|^2 + 0.01) (see Convective()), phi^n the last
  *   accepted step; SUPG along the flow a on r, streamline diffusion along
  *   lambda U^n on the redistancing residual (see Convective()).
- * The transport Jacobian freezes tau(a); the convective one is exact (its
- * residual is linear in phi, and tau(a*) is differentiated in a). */
+ * With the speed floor a0 = 0 (-levelset_supg_speed, the default) the
+ * transport Jacobian freezes tau(a), which is singular where a = 0; with
+ * a0 > 0 tau is smooth and differentiated in a, and the Jacobian is exact
+ * (a quasi-static flow needs it: there the velocity is algebraic and a
+ * line-search Newton needs a descent direction). The convective Jacobian is
+ * exact (its residual is linear in phi, and tau(a*) is differentiated in a). */
 #include "interfaceimpl.h"
 #include "slumppointwise.h"
 
@@ -21,10 +25,19 @@
 
 static inline PetscReal Tau(PetscInt dim, const PetscReal a[], const PetscScalar constants[])
 {
-  PetscReal n2 = 0.0;
+  PetscReal n2 = LSC(SLUMP_LS_SPEED) * LSC(SLUMP_LS_SPEED);
   for (PetscInt d = 0; d < dim; ++d) n2 += a[d] * a[d];
   if (n2 <= 0.0) return 0.0;
   return LSC(SLUMP_LS_SUPG) * LSC(SLUMP_LS_H) / LSC(SLUMP_LS_DEG) / (2.0 * PetscSqrtReal(n2));
+}
+
+/* d tau / d a_c = -tau a_c / |a|_0^2 with the speed floor, 0 without (tau frozen) */
+static inline void DTau(PetscInt dim, const PetscReal a[], PetscReal tau, const PetscScalar constants[], PetscReal dtau[])
+{
+  const PetscReal a0 = LSC(SLUMP_LS_SPEED);
+  PetscReal       n2 = a0 * a0;
+  for (PetscInt d = 0; d < dim; ++d) n2 += a[d] * a[d];
+  for (PetscInt d = 0; d < dim; ++d) dtau[d] = a0 > 0 ? -tau * a[d] / n2 : 0.0;
 }
 
 #define LS_SETUP \
@@ -78,7 +91,7 @@ static void g3_phi_phi(SLUMP_PWJ_ARGS, PetscScalar g3[])
   for (PetscInt d = 0; d < dim; ++d)
     for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = full ? tau * vel[d] * vel[e] : 0.0;
 }
-/* coupling to the velocity (the stabilisation's tau frozen) */
+/* coupling to the velocity (tau frozen unless the speed floor is set) */
 static void g0_phi_u(SLUMP_PWJ_ARGS, PetscScalar g0[])
 {
   LS_SETUP;
@@ -90,10 +103,12 @@ static void g2_phi_u(SLUMP_PWJ_ARGS, PetscScalar g2[])
   LS_SETUP;
   const PetscBool full = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0;
   const PetscReal tau  = Tau(dim, vel, constants);
-  PetscScalar     r    = phi_t;
+  PetscReal       dtau[3];
+  PetscScalar     r = phi_t;
+  DTau(dim, vel, tau, constants, dtau);
   for (PetscInt d = 0; d < dim; ++d) r += vel[d] * phx[d];
   for (PetscInt c = 0; c < dim; ++c)
-    for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = full ? tau * ((c == d ? r : 0.0) + vel[d] * phx[c]) : 0.0;
+    for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = full ? tau * ((c == d ? r : 0.0) + vel[d] * phx[c]) + dtau[c] * vel[d] * r : 0.0;
 }
 
 /* ---- convective reinitialisation ---- */
@@ -343,6 +358,7 @@ static PetscErrorCode SetConstants(void *ctx, SlumpProblem prob, PetscScalar c[]
   c[SLUMP_LS_LAMBDA] = ls->reinit.filtered ? ls->lambda : 0.0;
   c[SLUMP_LS_E]      = ls->E_cells * ls->h;
   c[SLUMP_LS_DEG]    = (PetscReal)ls->degree;
+  c[SLUMP_LS_SPEED]  = ls->supg_speed;
   PetscFunctionReturn(0);
 }
 
@@ -540,6 +556,7 @@ PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls)
   PetscOptionsBegin(ls->comm, NULL, "Level set", "SlumpLevelSet");
   PetscCall(PetscOptionsInt("-levelset_degree", "Polynomial degree of the level set (1 or 2)", "", ls->degree, &ls->degree, NULL));
   PetscCall(PetscOptionsReal("-levelset_supg", "SUPG factor (0: Galerkin)", "", ls->supg, &ls->supg, NULL));
+  PetscCall(PetscOptionsReal("-levelset_supg_speed", "Speed floor a0 in the SUPG tau = h/(2 sqrt(|a|^2 + a0^2)); a0 > 0 makes tau smooth and the Jacobian exact (0: tau(a) frozen in the Jacobian)", "SlumpLevelSetSetSUPGSpeed", ls->supg_speed, &ls->supg_speed, NULL));
   PetscCall(PetscOptionsString("-reinit", "Reinitialisation: none, convective, redistance, hamilton_jacobi", "", name, name, sizeof(name), &set));
   PetscCall(PetscOptionsInt("-reinit_every", "Between-step reinitialisation every n accepted steps", "", ls->reinit_every, &ls->reinit_every, NULL));
   PetscCall(PetscOptionsReal("-reinit_convective_lambda", "Redistancing speed lambda of the convective method", "", ls->lambda, &ls->lambda, NULL));
@@ -551,6 +568,7 @@ PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls)
   PetscOptionsEnd();
   PetscCheck(ls->degree == 1 || ls->degree == 2, ls->comm, PETSC_ERR_USER_INPUT, "-levelset_degree must be 1 or 2; got %" PetscInt_FMT, ls->degree);
   PetscCheck(ls->supg >= 0, ls->comm, PETSC_ERR_USER_INPUT, "-levelset_supg must be >= 0; got %g", (double)ls->supg);
+  PetscCheck(ls->supg_speed >= 0, ls->comm, PETSC_ERR_USER_INPUT, "-levelset_supg_speed must be >= 0 (0: no floor); got %g", (double)ls->supg_speed);
   PetscCheck(ls->reinit_every >= 1, ls->comm, PETSC_ERR_USER_INPUT, "-reinit_every must be >= 1 (steps); got %" PetscInt_FMT, ls->reinit_every);
   PetscCheck(ls->lambda >= 0, ls->comm, PETSC_ERR_USER_INPUT, "-reinit_convective_lambda must be >= 0; got %g", (double)ls->lambda);
   PetscCheck(ls->E_cells > 0, ls->comm, PETSC_ERR_USER_INPUT, "-reinit_convective_width must be > 0 (cells); got %g", (double)ls->E_cells);
@@ -595,6 +613,14 @@ PetscErrorCode SlumpLevelSetSetSurfaceFeed(SlumpLevelSet ls, PetscBool on)
 {
   PetscFunctionBeginUser;
   ls->surface_feed = on;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetSetSUPGSpeed(SlumpLevelSet ls, PetscReal a0)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(a0 >= 0, ls->comm, PETSC_ERR_USER_INPUT, "The SUPG speed floor must be >= 0 (0: no floor); got %g", (double)a0);
+  ls->supg_speed = a0;
   PetscFunctionReturn(0);
 }
 

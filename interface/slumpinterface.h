@@ -89,6 +89,10 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetWriteProfile(SlumpLevelSet ls, PetscRea
    yield stress then uses the depth below the current surface, lagged by
    one step. Option -levelset_surface_feed. */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetSurfaceFeed(SlumpLevelSet ls, PetscBool on);
+/* Speed floor a0 >= 0 of the transport's SUPG, tau = h/(2 sqrt(|a|^2 + a0^2)):
+   a0 > 0 makes tau smooth in the velocity and the Jacobian exact (0, the
+   default: tau(a) frozen in the Jacobian). Option -levelset_supg_speed. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetSUPGSpeed(SlumpLevelSet ls, PetscReal a0);
 /* Compute and hand over the surface now (collective; no-op if not fed). */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetUpdateSurface(SlumpLevelSet ls, PetscReal t, Vec X);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetGauges(SlumpLevelSet ls, PetscInt n, const PetscReal x[]);

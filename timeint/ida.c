@@ -2,8 +2,10 @@
  * Velocity differential, pressure algebraic and out of the error test
  * (IDASetSuppressAlg). With Taylor-Hood and inertia the DAE has index 2 in
  * the pressure, so IDACalcIC cannot help: consistent (u'0, p0) come from one
- * saddle-point solve (SlumpConsistentInitialConditions). Arrest is an IDA
- * root function on the mean shear rate. */
+ * saddle-point solve (SlumpConsistentInitialConditions). A quasi-static
+ * flow (a level set, no inertia) has velocity and pressure algebraic and
+ * index 1: IDACalcIC finds them (QuasiStaticIC). Arrest is an IDA root
+ * function on the mean shear rate. */
 #include "timeintimpl.h"
 #include <ida/ida.h>
 
@@ -129,6 +131,29 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
 
 #define IDACHECK(call) PetscCheck((call) >= 0, comm, PETSC_ERR_LIB, "%s failed", #call)
 
+/* Consistent (u, p) and phi' at the current time of a quasi-static DAE:
+   IDACalcIC's Newton on the algebraic unknowns, the level set held (a
+   nonlinear Stokes solve). Its first step only sets IDACalcIC's time scale
+   (cj): the last step, else 1e-3 of the run. */
+static PetscErrorCode QuasiStaticIC(void *mem, SlumpIntegrator ti, N_Vector yy, N_Vector yp, SUNLinearSolver LS, void *user, MPI_Comm comm)
+{
+  realtype  t;
+  int       flag;
+  PetscReal h = ti->h_last > 0 ? ti->h_last : 1e-3 * (ti->tfinal - ti->t0);
+  PetscFunctionBeginUser;
+  IDACHECK(IDAGetCurrentTime(mem, &t));
+  /* IDACalcIC's Newton has its own iteration data: no reassembly per
+     iterate from the step's (-ida_exact_newton) */
+  if (ti->exact_newton) PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, NULL, NULL));
+  IDACHECK(IDASetMaxNumItersIC(mem, 20));
+  IDACHECK(IDASetMaxNumJacsIC(mem, 20));
+  flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + h);
+  if (ti->exact_newton) PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, ExactAssemble, user));
+  PetscCheck(flag >= 0, comm, PETSC_ERR_NOT_CONVERGED, "The quasi-static initial solve (IDACalcIC) failed at t = %g: %s", (double)t, IDAGetReturnFlagName(flag));
+  IDACHECK(IDAGetConsistentIC(mem, yy, yp));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
 {
   MPI_Comm        comm;
@@ -144,6 +169,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   PetscReal       next_out;
   PetscInt        kout = 1;
   long int        nni_prev = 0, netf_prev = 0, ncfn_prev = 0;
+  PetscBool       quasistatic;
   PetscInt        nli_prev = 0, nni_tot = 0, netf_tot = 0, ncfn_tot = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
@@ -151,7 +177,20 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   PetscCall(VecDuplicate(X, &Xdot));
   PetscCall(VecDuplicate(X, &Y));
   PetscCall(VecDuplicate(X, &idv));
-  PetscCall(SlumpConsistentInitialConditions(ti->prob, ti->t0, X, Xdot));
+  {
+    /* quasi-static (a level set, no inertia): velocity and pressure are
+       algebraic and the DAE has index 1, so IDACalcIC finds them (a
+       nonlinear Stokes solve for the level set given) and phi' below */
+    PetscInt effects;
+    IS       isu, isp;
+    PetscCall(SlumpProblemGetEffects(ti->prob, &effects));
+    PetscCall(SlumpProblemGetFieldIS(ti->prob, &isu, &isp));
+    quasistatic = (!(effects & SLUMP_EFFECT_INERTIA) && (effects & SLUMP_EFFECT_FREE_SURFACE) && isp) ? PETSC_TRUE : PETSC_FALSE;
+    PetscCall(ISDestroy(&isu));
+    PetscCall(ISDestroy(&isp));
+  }
+  if (quasistatic) PetscCall(VecZeroEntries(Xdot));
+  else PetscCall(SlumpConsistentInitialConditions(ti->prob, ti->t0, X, Xdot));
   PetscCall(SlumpProblemGetDifferentialMarker(ti->prob, idv));
   yy   = N_VMake_Petsc(X, ctx);
   yp   = N_VMake_Petsc(Xdot, ctx);
@@ -186,6 +225,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   IDACHECK(IDASetSuppressAlg(mem, SUNTRUE));
   IDACHECK(IDASetStopTime(mem, ti->tfinal));
   IDACHECK(IDASetMaxNumSteps(mem, ti->max_steps));
+  if (quasistatic) PetscCall(QuasiStaticIC(mem, ti, yy, yp, LS, &user, comm));
   if (ti->dt > 0) IDACHECK(IDASetInitStep(mem, ti->dt));
   else {
     /* IDA's own first step, min(1e-3 (tf - t0), 0.5/|u'|_WRMS), floored at
@@ -305,6 +345,10 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       PetscCall(SlumpProblemPostStep(ti->prob, ti->stats.steps, tret, X, &changed));
       if (changed) {
         IDACHECK(IDAReInit(mem, tret, yy, yp));
+        /* quasi-static: the velocity follows the new level set at once;
+           the line-search stage solve finds it from the old one (IDACalcIC's
+           modified Newton failed there: bingham_dam_break -re 0 at t = 7.8) */
+        if (quasistatic && !ti->linesearch) PetscCall(QuasiStaticIC(mem, ti, yy, yp, LS, &user, comm));
         IDACHECK(IDASetInitStep(mem, ti->restart_step * ti->h_last));
         ti->stats.restarts++;
         nni_prev = netf_prev = ncfn_prev = 0;

@@ -78,6 +78,13 @@ PetscErrorCode SlumpIntegratorSetRestartStep(SlumpIntegrator ti, PetscReal fract
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpIntegratorSetLineSearch(SlumpIntegrator ti, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  ti->linesearch = on;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpIntegratorSetTolerances(SlumpIntegrator ti, PetscReal rtol, PetscReal atol)
 {
   PetscFunctionBeginUser;

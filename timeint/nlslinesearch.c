@@ -21,7 +21,7 @@ static SUNNonlinearSolver_Type NLSGetType(SUNNonlinearSolver NLS)
   return SUNNONLINEARSOLVER_ROOTFIND;
 }
 
-static PetscErrorCode NLSSolve_Private(NLSContent *c, N_Vector ycor0, N_Vector ycor, void *mem, PetscBool *conv)
+static PetscErrorCode NLSSolve_Private(NLSContent *c, N_Vector y0, N_Vector ycor, void *mem, PetscBool *conv)
 {
   realtype tcur, cj;
   N_Vector yypred, yppred, yyn, ypn, res;
@@ -29,13 +29,16 @@ static PetscErrorCode NLSSolve_Private(NLSContent *c, N_Vector ycor0, N_Vector y
   PetscInt nits, lits;
   PetscFunctionBeginUser;
   PetscCheck(!IDAGetNonlinearSystemData(mem, &tcur, &yypred, &yppred, &yyn, &ypn, &res, &cj, &ud), PETSC_COMM_SELF, PETSC_ERR_LIB, "IDAGetNonlinearSystemData failed");
-  PetscCall(VecWAXPY(c->y, 1.0, N_VGetVector_Petsc(yypred), N_VGetVector_Petsc(ycor0)));
+  /* y0 is the initial iterate (IDA's predictor), not a correction: adding
+     it to the predictor started KINSOL from twice the state, which only a
+     mass-dominated (inertial) stage survived */
+  PetscCall(VecCopy(N_VGetVector_Petsc(y0), c->y));
   PetscCall(VecWAXPY(c->beta, -cj, N_VGetVector_Petsc(yypred), N_VGetVector_Petsc(yppred)));
   PetscCall(SlumpImplicitSolverSolve(c->s, tcur, cj, c->beta, c->y, conv, &nits, &lits));
   c->nits += nits;
   c->lastits = nits;
   c->nlin += lits;
-  if (*conv) PetscCall(VecWAXPY(N_VGetVector_Petsc(ycor), -1.0, N_VGetVector_Petsc(yypred), c->y));
+  if (*conv) PetscCall(VecWAXPY(N_VGetVector_Petsc(ycor), -1.0, N_VGetVector_Petsc(y0), c->y));
   PetscFunctionReturn(0);
 }
 

@@ -46,6 +46,10 @@ PETSC_EXTERN PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTimes(SlumpIntegrator ti, PetscReal t0, PetscReal tfinal, PetscReal dtout);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTimes(SlumpIntegrator ti, PetscReal *t0, PetscReal *tfinal, PetscReal *dtout);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetRestartStep(SlumpIntegrator ti, PetscReal fraction);
+/* IDA's per-step nonlinear solver: its modified Newton (PETSC_FALSE, the
+   default) or KINSOL with a line search and an exact Jacobian (PETSC_TRUE);
+   option -ida_nonlinear_solver newton|linesearch. */
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetLineSearch(SlumpIntegrator ti, PetscBool on);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTolerances(SlumpIntegrator ti, PetscReal rtol, PetscReal atol);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetTolerances(SlumpIntegrator ti, PetscReal *rtol, PetscReal *atol);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetTimeStep(SlumpIntegrator ti, PetscReal dt);
