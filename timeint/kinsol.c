@@ -15,7 +15,7 @@ struct _n_SlumpImplicitSolver {
   Mat             J;
   SUNMatrix       A;
   SUNLinearSolver LS;
-  PetscReal       t, alpha, fnormtol, fnormrtol, maxstep;
+  PetscReal       t, alpha, fnormtol, fnormrtol, maxstep, fref;
   Vec             beta;
   PetscInt        maxit;
   SlumpStats      stats;
@@ -142,6 +142,13 @@ PetscErrorCode SlumpImplicitSolverSetTolerance(SlumpImplicitSolver s, PetscReal 
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpImplicitSolverSetResidualScale(SlumpImplicitSolver s, PetscReal fref)
+{
+  PetscFunctionBeginUser;
+  s->fref = fref;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, PetscReal alpha, Vec beta, Vec X, PetscBool *converged, PetscInt *newton_its, PetscInt *lin_its)
 {
   long int  nni1 = 0;
@@ -156,7 +163,8 @@ PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, Pets
   s->nhist = 0;
   PetscCall(KinFunc_Private(s, s->u, s->work));
   PetscCall(VecNorm(s->work, NORM_INFINITY, &f0));
-  tol = PetscMax(s->fnormtol, s->fnormrtol * f0);
+  tol     = PetscMax(s->fnormtol, s->fnormrtol * PetscMax(f0, s->fref));
+  s->fref = 0.0;
   PetscCheck(!KINSetFuncNormTol(s->kmem, tol), s->comm, PETSC_ERR_LIB, "KINSetFuncNormTol failed");
   PetscCall(SlumpSUNLinSolGetCounts(s->LS, &ls0, &li0));
   flag = KINSol(s->kmem, s->nu, KIN_LINESEARCH, s->nscale, s->nscale);

@@ -34,6 +34,9 @@ PETSC_INTERN PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, Pets
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetHistory(SlumpImplicitSolver s, PetscInt *n, const PetscReal **hist);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *stats);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverSetTolerance(SlumpImplicitSolver s, PetscReal fnormtol);
+/* For the next solve only: the relative tolerance -newton_rtol applies to
+   max(max|F(X0)|, fref) instead of max|F(X0)| (X0 the initial iterate) */
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverSetResidualScale(SlumpImplicitSolver s, PetscReal fref);
 
 struct _n_SlumpIntegrator {
   SlumpProblem         prob;

@@ -21,7 +21,9 @@
  *   default; box 4 x 1.5 h_i. The floor is the thesis' no slip under the
  *   material with a slip cell at the contact line: Navier friction
  *   beta m(phi) u with beta = 1e4 eta_p/h_i (slip length 1e-4 h_i under the
- *   fluid, free slip in the air), -floor for others.
+ *   fluid, free slip in the air), -floor for others. -re 0 is the
+ *   quasi-static limit: no inertia (velocity and pressure algebraic, only
+ *   phi differential), density and gravity 1 so that the weight stays 1.
  *
  * column_collapse: the mu(I) columns of Lagree et al. (below).
  *
