@@ -1354,6 +1354,48 @@ def test_bingham_dam_break_units():
             fail("Re = %s: volume drift %.3e > 2 %%" % (re, r["drift"]))
 
 
+def test_bingham_dam_break_creep():
+    """The quasi-static bingham_dam_break (-re 0, Bn = 0.1, 40 x 15 cells)
+    to the thesis' arrest time t = 310 at Papanastasiou m = 1e3 and 1e4.
+    Both must get there without an unrecoverable failure, with the material
+    volume within 2 %, and with most of the material below the yield stress
+    (yielded fraction < 0.1; measured 0.044 and 0.068). The material then
+    creeps through the regularisation: the mean shear rate must be at least
+    2.5 times lower at m = 1e4 (measured 1.224e-3 and 3.119e-4, 3.9 times).
+    It must also spread less at m = 1e4 (front 2.165 and 1.943). At m = 1e4
+    the deposit must lie within 15 % of the perfectly plastic lubrication
+    limit in front position (2.24; measured 1.943, -13 %) and within 10 % in
+    axis height (0.669; measured 0.706, +5.5 %)."""
+    w = work("bingham_dam_break_creep")
+    res = {}
+    for m in ("1e3", "1e4"):
+        d = os.path.join(w, "m" + m)
+        run("bingham_dam_break", ["-re", "0", "-mesh_nx", "40", "-mesh_ny", "15", "-output_fields", "0", "-time_final", "310",
+                                  "-time_output_dt", "10", "-rheology_papanastasiou_m", m], d)
+        s, ser = summary(d), series(d)
+        res[m] = dict(front=s["front"], axis=s["height_axis"], gdot=ser[-1]["mean_shear_rate"], yf=ser[-1]["yielded_fraction"],
+                      drift=s["volume_drift_max"], t=s["t_final"])
+        print("m = %s: t %.1f, front %.4f, axis %.4f, mean shear rate %.4e, yielded fraction %.4f, drift %.2e, %d steps, %.1f s"
+              % (m, s["t_final"], s["front"], s["height_axis"], res[m]["gdot"], res[m]["yf"], s["volume_drift_max"], s["steps"], s["wall_time"]))
+        if not abs(s["t_final"] - 310) <= 1e-6 * 310:
+            fail("m = %s: the run stopped at t = %g before 310" % (m, s["t_final"]))
+        if not s["volume_drift_max"] <= 0.02:
+            fail("m = %s: volume drift %.3e > 2 %%" % (m, s["volume_drift_max"]))
+        if not res[m]["yf"] < 0.1:
+            fail("m = %s: yielded fraction %.3f at t = 310, not below 0.1" % (m, res[m]["yf"]))
+    a, b = res["1e3"], res["1e4"]
+    if not a["gdot"] >= 2.5 * b["gdot"]:
+        fail("mean shear rate at t = 310: %.3e (m = 1e3) is not 2.5 times %.3e (m = 1e4)" % (a["gdot"], b["gdot"]))
+    if not b["front"] < a["front"]:
+        fail("the front spreads further at m = 1e4 (%.4f) than at 1e3 (%.4f)" % (b["front"], a["front"]))
+    xf = (3.0 / (2.0 * (2.0 * 0.1) ** 0.5)) ** (2.0 / 3.0)
+    h0 = (2.0 * 0.1 * xf) ** 0.5
+    if not abs(b["front"] / xf - 1) <= 0.15:
+        fail("m = 1e4: front %.4f not within 15 %% of the plastic limit %.4f" % (b["front"], xf))
+    if not abs(b["axis"] / h0 - 1) <= 0.10:
+        fail("m = 1e4: axis height %.4f not within 10 %% of the plastic limit %.4f" % (b["axis"], h0))
+
+
 def test_stability_column_collapse_air():
     """Hard ratios over a collapse: column_collapse a = 0.5 with the ambient
     viscosity lowered to 1e-6 (1e-6 of the rheology's floor-free viscosity
