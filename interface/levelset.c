@@ -23,21 +23,17 @@
 
 #define LSC(k) PetscRealPart(constants[SLUMP_C_FIELD + (k)])
 
-static inline PetscReal Tau(PetscInt dim, const PetscReal a[], const PetscScalar constants[])
-{
-  PetscReal n2 = LSC(SLUMP_LS_SPEED) * LSC(SLUMP_LS_SPEED);
-  for (PetscInt d = 0; d < dim; ++d) n2 += a[d] * a[d];
-  if (n2 <= 0.0) return 0.0;
-  return LSC(SLUMP_LS_SUPG) * LSC(SLUMP_LS_H) / LSC(SLUMP_LS_DEG) / (2.0 * PetscSqrtReal(n2));
-}
-
-/* d tau / d a_c = -tau a_c / |a|_0^2 with the speed floor, 0 without (tau frozen) */
-static inline void DTau(PetscInt dim, const PetscReal a[], PetscReal tau, const PetscScalar constants[], PetscReal dtau[])
+/* tau and, if dtau is given, d tau / d a_c = -tau a_c / |a|_0^2 with the
+   speed floor a0 > 0, 0 without (tau frozen) */
+static inline PetscReal Tau(PetscInt dim, const PetscReal a[], const PetscScalar constants[], PetscReal dtau[])
 {
   const PetscReal a0 = LSC(SLUMP_LS_SPEED);
-  PetscReal       n2 = a0 * a0;
+  PetscReal       n2 = a0 * a0, tau;
   for (PetscInt d = 0; d < dim; ++d) n2 += a[d] * a[d];
-  for (PetscInt d = 0; d < dim; ++d) dtau[d] = a0 > 0 ? -tau * a[d] / n2 : 0.0;
+  tau = n2 > 0.0 ? LSC(SLUMP_LS_SUPG) * LSC(SLUMP_LS_H) / LSC(SLUMP_LS_DEG) / (2.0 * PetscSqrtReal(n2)) : 0.0;
+  if (dtau)
+    for (PetscInt d = 0; d < dim; ++d) dtau[d] = a0 > 0 ? -tau * a[d] / n2 : 0.0;
+  return tau;
 }
 
 #define LS_SETUP \
@@ -62,7 +58,7 @@ static void f0_phi(SLUMP_PW_ARGS, PetscScalar f0[])
 static void f1_phi(SLUMP_PW_ARGS, PetscScalar f1[])
 {
   LS_SETUP;
-  const PetscReal tau = Tau(dim, vel, constants);
+  const PetscReal tau = Tau(dim, vel, constants, NULL);
   PetscScalar     r   = phi_t;
   for (PetscInt d = 0; d < dim; ++d) r += vel[d] * phx[d];
   for (PetscInt d = 0; d < dim; ++d) f1[d] = tau * vel[d] * r;
@@ -80,14 +76,14 @@ static void g1_phi_phi(SLUMP_PWJ_ARGS, PetscScalar g1[])
 static void g2_phi_phi(SLUMP_PWJ_ARGS, PetscScalar g2[])
 {
   LS_SETUP;
-  const PetscReal tau = Tau(dim, vel, constants);
+  const PetscReal tau = Tau(dim, vel, constants, NULL);
   for (PetscInt d = 0; d < dim; ++d) g2[d] = tau * vel[d] * u_tShift;
 }
 static void g3_phi_phi(SLUMP_PWJ_ARGS, PetscScalar g3[])
 {
   LS_SETUP;
   const PetscBool full = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0;
-  const PetscReal tau  = Tau(dim, vel, constants);
+  const PetscReal tau  = Tau(dim, vel, constants, NULL);
   for (PetscInt d = 0; d < dim; ++d)
     for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = full ? tau * vel[d] * vel[e] : 0.0;
 }
@@ -102,10 +98,9 @@ static void g2_phi_u(SLUMP_PWJ_ARGS, PetscScalar g2[])
 {
   LS_SETUP;
   const PetscBool full = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0;
-  const PetscReal tau  = Tau(dim, vel, constants);
   PetscReal       dtau[3];
-  PetscScalar     r = phi_t;
-  DTau(dim, vel, tau, constants, dtau);
+  const PetscReal tau = Tau(dim, vel, constants, dtau);
+  PetscScalar     r   = phi_t;
   for (PetscInt d = 0; d < dim; ++d) r += vel[d] * phx[d];
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt d = 0; d < dim; ++d) g2[c * dim + d] = full ? tau * ((c == d ? r : 0.0) + vel[d] * phx[c]) + dtau[c] * vel[d] * r : 0.0;
