@@ -1,7 +1,17 @@
 /* Momentum and continuity pointwise terms of the effects a scene switches on.
  *
  *   momentum:   rho (u_t + u . grad u) - rho g  [f0]   +  tau - p I  [f1, rheology]
+ *               + 1/2 (rho_t + div(rho u)) u    [f0, -convection_form skew]
+ *               + 1/2 rho (div u) u             [f0, -convection_form temam]
  *   continuity: -div u                          [f0]
+ *
+ * The skew term vanishes for the exact solution (mass conservation). With it,
+ * testing with the discrete velocity gives int rho u_t.u + 1/2 rho_t |u|^2 =
+ * d/dt int rho |u|^2/2 and int rho (u.grad u).u + 1/2 div(rho u) |u|^2 = 0
+ * (u.n = 0 on the walls): the inertial terms do no work, whatever the
+ * discrete divergence of u and the level set's transport error. Without it
+ * (advective), a Taylor-Hood velocity that is only weakly divergence-free
+ * can feed energy into a nearly inviscid ambient fluid.
  *
  * One function per combination of effects, so a term that is off costs
  * nothing at the quadrature points (no branch, no assembly). */
@@ -22,6 +32,29 @@ static inline PetscReal Density(PetscInt Nf, const PetscInt uOff[], const PetscS
   return m * rm + (1.0 - m) * ra;
 }
 
+/* The skew term's factor s, the term being s u:
+   s = 1/2 (rho div u + rho'(phi) (phi_t + u . grad phi)) (rho' = 0 in one
+   phase; mass false drops the rho' part: Temam's 1/2 rho (div u) u).
+   Optionally rho, rho' and ds/dphi at fixed phi_t and grad phi. */
+static inline PetscReal SkewFactor(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool twophase, PetscBool mass, PetscReal *rho_, PetscReal *drho_, PetscReal *ds_dphi)
+{
+  PetscReal rho, drho, div = 0.0, adv = 0.0;
+  rho = Density(Nf, uOff, u, constants, twophase, &drho);
+  for (PetscInt d = 0; d < dim; ++d) div += PetscRealPart(u_x[d * dim + d]);
+  if (twophase && mass) {
+    adv = PetscRealPart(u_t[uOff[Nf - 1]]);
+    for (PetscInt d = 0; d < dim; ++d) adv += PetscRealPart(u[d] * u_x[uOff_x[Nf - 1] + d]);
+  }
+  if (rho_) *rho_ = rho;
+  if (drho_) *drho_ = drho;
+  if (ds_dphi) {
+    PetscReal d2m = 0.0;
+    if (twophase && mass) SlumpPwMaterialFractionCurvature(u[uOff[Nf - 1]], constants, &d2m);
+    *ds_dphi = 0.5 * (drho * div + d2m * (PetscRealPart(constants[SLUMP_C_RHO]) - PetscRealPart(constants[SLUMP_C_MIX_RHO])) * adv);
+  }
+  return 0.5 * (rho * div + drho * adv);
+}
+
 /* the momentum equation's f0 per unit density: u_t + u . grad u - g */
 static inline void MomentumPerDensity(PetscInt dim, const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool inertia, PetscBool convection, PetscBool body, PetscScalar f0[])
 {
@@ -35,76 +68,111 @@ static inline void MomentumPerDensity(PetscInt dim, const PetscScalar u[], const
   }
 }
 
-static inline void MomentumF0(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool inertia, PetscBool convection, PetscBool body, PetscBool twophase, PetscScalar f0[])
+static inline void MomentumF0(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool inertia, PetscBool convection, PetscBool body, PetscBool twophase, PetscInt skew, PetscScalar f0[])
 {
   const PetscReal rho = Density(Nf, uOff, u, constants, twophase, NULL);
+  const PetscReal s   = skew ? SkewFactor(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, twophase, skew == SLUMP_CONVECTION_SKEW ? PETSC_TRUE : PETSC_FALSE, NULL, NULL, NULL) : 0.0;
   for (PetscInt c = 0; c < dim; ++c) {
     PetscScalar v = 0.0;
     if (inertia) v += rho * u_t[c];
     if (convection)
       for (PetscInt d = 0; d < dim; ++d) v += rho * u[d] * u_x[c * dim + d];
+    if (skew) v += s * u[c];
     if (body) v -= rho * constants[SLUMP_C_GX + c];
     f0[c] = v;
   }
 }
 
-#define MOMENTUM_F0(NAME, INERTIA, CONV, BODY, TP) \
+#define MOMENTUM_F0(NAME, INERTIA, CONV, BODY, TP, SKEW) \
   static void NAME(SLUMP_PW_ARGS, PetscScalar f0[]) \
   { \
-    MomentumF0(dim, Nf, uOff, u, u_t, u_x, constants, INERTIA, CONV, BODY, TP, f0); \
+    MomentumF0(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, INERTIA, CONV, BODY, TP, SKEW, f0); \
   }
-MOMENTUM_F0(f0_u_none, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_I, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_IC, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_B, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_IB, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_ICB, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE)
-MOMENTUM_F0(f0_u_none_tp, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE)
-MOMENTUM_F0(f0_u_I_tp, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE)
-MOMENTUM_F0(f0_u_IC_tp, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE)
-MOMENTUM_F0(f0_u_B_tp, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE)
-MOMENTUM_F0(f0_u_IB_tp, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE)
-MOMENTUM_F0(f0_u_ICB_tp, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE)
+MOMENTUM_F0(f0_u_none, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, 0)
+MOMENTUM_F0(f0_u_I, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, 0)
+MOMENTUM_F0(f0_u_IC, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, 0)
+MOMENTUM_F0(f0_u_B, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, PETSC_FALSE, 0)
+MOMENTUM_F0(f0_u_IB, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, PETSC_FALSE, 0)
+MOMENTUM_F0(f0_u_ICB, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, 0)
+MOMENTUM_F0(f0_u_none_tp, PETSC_FALSE, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, 0)
+MOMENTUM_F0(f0_u_I_tp, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, 0)
+MOMENTUM_F0(f0_u_IC_tp, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, 0)
+MOMENTUM_F0(f0_u_B_tp, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE, 0)
+MOMENTUM_F0(f0_u_IB_tp, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, PETSC_TRUE, 0)
+MOMENTUM_F0(f0_u_ICB_tp, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, 0)
+MOMENTUM_F0(f0_u_ICS, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, SLUMP_CONVECTION_SKEW)
+MOMENTUM_F0(f0_u_ICBS, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, SLUMP_CONVECTION_SKEW)
+MOMENTUM_F0(f0_u_ICS_tp, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, SLUMP_CONVECTION_SKEW)
+MOMENTUM_F0(f0_u_ICT_tp, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, SLUMP_CONVECTION_TEMAM)
+MOMENTUM_F0(f0_u_ICBS_tp, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, SLUMP_CONVECTION_SKEW)
+MOMENTUM_F0(f0_u_ICBT_tp, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, SLUMP_CONVECTION_TEMAM)
 
-PetscPointFunc SlumpPwSelectMomentumF0(PetscInt e, PetscBool tp)
+PetscPointFunc SlumpPwSelectMomentumF0(PetscInt e, PetscBool tp, PetscInt skew)
 {
   const PetscBool in = (e & SLUMP_EFFECT_INERTIA) ? PETSC_TRUE : PETSC_FALSE;
   const PetscBool cv = (e & SLUMP_EFFECT_CONVECTION) ? PETSC_TRUE : PETSC_FALSE;
   const PetscBool bf = (e & SLUMP_EFFECT_BODY_FORCE) ? PETSC_TRUE : PETSC_FALSE;
   if (tp) {
+    if (in && cv && skew == SLUMP_CONVECTION_SKEW) return bf ? f0_u_ICBS_tp : f0_u_ICS_tp;
+    if (in && cv && skew == SLUMP_CONVECTION_TEMAM) return bf ? f0_u_ICBT_tp : f0_u_ICT_tp;
     if (in && cv) return bf ? f0_u_ICB_tp : f0_u_IC_tp;
     if (in) return bf ? f0_u_IB_tp : f0_u_I_tp;
     return bf ? f0_u_B_tp : f0_u_none_tp;
   }
+  if (in && cv && skew) return bf ? f0_u_ICBS : f0_u_ICS;
   if (in && cv) return bf ? f0_u_ICB : f0_u_IC;
   if (in) return bf ? f0_u_IB : f0_u_I;
   return bf ? f0_u_B : f0_u_none;
 }
 
-/* Two-phase: d f0_u / d phi = (d rho / d phi) (u_t + u . grad u - g). */
-#define MOMENTUM_G0_PHI(NAME, INERTIA, CONV, BODY) \
+/* Two-phase: d f0_u / d phi = (d rho / d phi) (u_t + u . grad u - g), and
+   with the skew term (ds/dphi + shift rho'/2) u. */
+#define MOMENTUM_G0_PHI(NAME, INERTIA, CONV, BODY, SKEW) \
   static void NAME(SLUMP_PWJ_ARGS, PetscScalar g0[]) \
   { \
-    PetscReal   drho; \
+    PetscReal   drho, ds = 0.0; \
     PetscScalar r[3]; \
     (void)Density(Nf, uOff, u, constants, PETSC_TRUE, &drho); \
+    if (SKEW) (void)SkewFactor(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, SKEW == SLUMP_CONVECTION_SKEW ? PETSC_TRUE : PETSC_FALSE, NULL, NULL, &ds); \
     MomentumPerDensity(dim, u, u_t, u_x, constants, INERTIA, CONV, BODY, r); \
-    for (PetscInt c = 0; c < dim; ++c) g0[c] = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0 ? drho * r[c] : 0.0; \
+    for (PetscInt c = 0; c < dim; ++c) g0[c] = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0 ? drho * r[c] + (SKEW ? (ds + (SKEW == SLUMP_CONVECTION_SKEW ? 0.5 * u_tShift * drho : 0.0)) * u[c] : 0.0) : 0.0; \
   }
-MOMENTUM_G0_PHI(g0_uphi_I, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE)
-MOMENTUM_G0_PHI(g0_uphi_IC, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE)
-MOMENTUM_G0_PHI(g0_uphi_B, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE)
-MOMENTUM_G0_PHI(g0_uphi_IB, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE)
-MOMENTUM_G0_PHI(g0_uphi_ICB, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE)
+MOMENTUM_G0_PHI(g0_uphi_I, PETSC_TRUE, PETSC_FALSE, PETSC_FALSE, 0)
+MOMENTUM_G0_PHI(g0_uphi_IC, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, 0)
+MOMENTUM_G0_PHI(g0_uphi_B, PETSC_FALSE, PETSC_FALSE, PETSC_TRUE, 0)
+MOMENTUM_G0_PHI(g0_uphi_IB, PETSC_TRUE, PETSC_FALSE, PETSC_TRUE, 0)
+MOMENTUM_G0_PHI(g0_uphi_ICB, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, 0)
+MOMENTUM_G0_PHI(g0_uphi_ICS, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, SLUMP_CONVECTION_SKEW)
+MOMENTUM_G0_PHI(g0_uphi_ICT, PETSC_TRUE, PETSC_TRUE, PETSC_FALSE, SLUMP_CONVECTION_TEMAM)
+MOMENTUM_G0_PHI(g0_uphi_ICBS, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, SLUMP_CONVECTION_SKEW)
+MOMENTUM_G0_PHI(g0_uphi_ICBT, PETSC_TRUE, PETSC_TRUE, PETSC_TRUE, SLUMP_CONVECTION_TEMAM)
 
-PetscPointJac SlumpPwSelectG0Phi(PetscInt e)
+PetscPointJac SlumpPwSelectG0Phi(PetscInt e, PetscInt skew)
 {
   const PetscBool in = (e & SLUMP_EFFECT_INERTIA) ? PETSC_TRUE : PETSC_FALSE;
   const PetscBool cv = (e & SLUMP_EFFECT_CONVECTION) ? PETSC_TRUE : PETSC_FALSE;
   const PetscBool bf = (e & SLUMP_EFFECT_BODY_FORCE) ? PETSC_TRUE : PETSC_FALSE;
+  if (in && cv && skew == SLUMP_CONVECTION_SKEW) return bf ? g0_uphi_ICBS : g0_uphi_ICS;
+  if (in && cv && skew == SLUMP_CONVECTION_TEMAM) return bf ? g0_uphi_ICBT : g0_uphi_ICT;
   if (in && cv) return bf ? g0_uphi_ICB : g0_uphi_IC;
   if (in) return bf ? g0_uphi_IB : g0_uphi_I;
   return bf ? g0_uphi_B : NULL;
+}
+
+/* skew term, two-phase: d f0_u[c] / d phi_x[d] = rho'/2 u_d u_c */
+static void g1_uphi_S(SLUMP_PWJ_ARGS, PetscScalar g1[])
+{
+  const PetscBool full = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0;
+  PetscReal       drho;
+  (void)Density(Nf, uOff, u, constants, PETSC_TRUE, &drho);
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt d = 0; d < dim; ++d) g1[c * dim + d] = full ? 0.5 * drho * u[d] * u[c] : 0.0;
+}
+
+PetscPointJac SlumpPwSelectG1Phi(PetscInt e, PetscInt skew)
+{
+  const PetscBool cv = (e & SLUMP_EFFECT_CONVECTION) && (e & SLUMP_EFFECT_INERTIA) ? PETSC_TRUE : PETSC_FALSE;
+  return cv && skew == SLUMP_CONVECTION_SKEW ? g1_uphi_S : NULL;
 }
 
 /* d f0_u / d u = rho shift I + rho grad u (convection). */
@@ -126,6 +194,25 @@ static inline void G1uuC(PetscInt dim, PetscReal rho, const PetscScalar u[], con
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt e = 0; e < dim; ++e)
       for (PetscInt d = 0; d < dim; ++d) g1[(c * dim + e) * dim + d] = (c == e && full) ? rho * u[d] : 0.0;
+}
+/* The skew term s u: d/d u_e = s delta_ce + rho'/2 phi_x[e] u_c, d/d u_x[e,d] =
+   rho/2 delta_ed u_c (added to the above). */
+static inline void G0uuSkew(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool tp, PetscBool mass, PetscScalar g0[])
+{
+  PetscReal rho, drho, s;
+  if (PetscRealPart(constants[SLUMP_C_JACMODE]) != 0.0) return;
+  s = SkewFactor(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, tp, mass, &rho, &drho, NULL);
+  for (PetscInt c = 0; c < dim; ++c) {
+    g0[c * dim + c] += s;
+    if (tp && mass)
+      for (PetscInt e = 0; e < dim; ++e) g0[c * dim + e] += 0.5 * drho * u_x[uOff_x[Nf - 1] + e] * u[c];
+  }
+}
+static inline void G1uuSkew(PetscInt dim, PetscReal rho, const PetscScalar u[], const PetscScalar constants[], PetscScalar g1[])
+{
+  if (PetscRealPart(constants[SLUMP_C_JACMODE]) != 0.0) return;
+  for (PetscInt c = 0; c < dim; ++c)
+    for (PetscInt e = 0; e < dim; ++e) g1[(c * dim + e) * dim + e] += 0.5 * rho * u[c];
 }
 #define RHO_(TP) Density(Nf, uOff, u, constants, TP, NULL)
 static void g0_uu_I(SLUMP_PWJ_ARGS, PetscScalar g0[])
@@ -152,17 +239,45 @@ static void g1_uu_C_tp(SLUMP_PWJ_ARGS, PetscScalar g1[])
 {
   G1uuC(dim, RHO_(PETSC_TRUE), u, constants, g1);
 }
-
-PetscPointJac SlumpPwSelectG0(PetscInt e, PetscBool tp)
+static void g0_uu_ICS(SLUMP_PWJ_ARGS, PetscScalar g0[])
 {
-  if (!(e & SLUMP_EFFECT_INERTIA)) return NULL;
-  if (tp) return (e & SLUMP_EFFECT_CONVECTION) ? g0_uu_IC_tp : g0_uu_I_tp;
-  return (e & SLUMP_EFFECT_CONVECTION) ? g0_uu_IC : g0_uu_I;
+  G0uuIC(dim, RHO_(PETSC_FALSE), u_tShift, u_x, constants, g0);
+  G0uuSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_FALSE, PETSC_FALSE, g0);
+}
+static void g1_uu_CS(SLUMP_PWJ_ARGS, PetscScalar g1[])
+{
+  G1uuC(dim, RHO_(PETSC_FALSE), u, constants, g1);
+  G1uuSkew(dim, RHO_(PETSC_FALSE), u, constants, g1);
+}
+static void g0_uu_ICS_tp(SLUMP_PWJ_ARGS, PetscScalar g0[])
+{
+  G0uuIC(dim, RHO_(PETSC_TRUE), u_tShift, u_x, constants, g0);
+  G0uuSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, PETSC_TRUE, g0);
+}
+static void g0_uu_ICT_tp(SLUMP_PWJ_ARGS, PetscScalar g0[])
+{
+  G0uuIC(dim, RHO_(PETSC_TRUE), u_tShift, u_x, constants, g0);
+  G0uuSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, PETSC_FALSE, g0);
+}
+static void g1_uu_CS_tp(SLUMP_PWJ_ARGS, PetscScalar g1[])
+{
+  G1uuC(dim, RHO_(PETSC_TRUE), u, constants, g1);
+  G1uuSkew(dim, RHO_(PETSC_TRUE), u, constants, g1);
 }
 
-PetscPointJac SlumpPwSelectG1(PetscInt e, PetscBool tp)
+PetscPointJac SlumpPwSelectG0(PetscInt e, PetscBool tp, PetscInt skew)
+{
+  if (!(e & SLUMP_EFFECT_INERTIA)) return NULL;
+  if (!(e & SLUMP_EFFECT_CONVECTION)) return tp ? g0_uu_I_tp : g0_uu_I;
+  if (skew == SLUMP_CONVECTION_SKEW) return tp ? g0_uu_ICS_tp : g0_uu_ICS;
+  if (skew == SLUMP_CONVECTION_TEMAM) return tp ? g0_uu_ICT_tp : g0_uu_ICS;
+  return tp ? g0_uu_IC_tp : g0_uu_IC;
+}
+
+PetscPointJac SlumpPwSelectG1(PetscInt e, PetscBool tp, PetscInt skew)
 {
   if (!(e & SLUMP_EFFECT_CONVECTION)) return NULL;
+  if (skew) return tp ? g1_uu_CS_tp : g1_uu_CS;
   return tp ? g1_uu_C_tp : g1_uu_C;
 }
 

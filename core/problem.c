@@ -17,6 +17,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->velocityDegree = 2;
   p->pressureDegree = 1;
   p->quadOrder      = 3; /* (3+1)^2 = 16 points: exact to degree 7 */
+  p->convForm       = SLUMP_CONVECTION_ADVECTIVE;
   p->extraField     = -1;
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
@@ -327,6 +328,15 @@ PetscErrorCode SlumpProblemSetTwoPhaseFilter(SlumpProblem prob, PetscReal E)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemSetConvectionForm(SlumpProblem prob, SlumpConvectionForm form)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!prob->setup, prob->comm, PETSC_ERR_ORDER, "Set the convection form before SlumpProblemSetUp()");
+  PetscCheck(form >= SLUMP_CONVECTION_ADVECTIVE && form <= SLUMP_CONVECTION_SKEW, prob->comm, PETSC_ERR_ARG_OUTOFRANGE, "Unknown convection form %d", (int)form);
+  prob->convForm = (PetscInt)form;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemSetTwoPhaseViscosityShift(SlumpProblem prob, PetscReal shift)
 {
   PetscFunctionBeginUser;
@@ -370,6 +380,10 @@ PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob)
     PetscInt    k       = prob->petscAssembly ? 1 : 0;
     PetscCall(PetscOptionsEList("-assembly", "Cell loop: slump (ours, fast) or petsc (DMPlexTSComputeIFunctionFEM/IJacobianFEM)", "", kinds, 2, kinds[k], &k, NULL));
     prob->petscAssembly = k == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  if (prob->effects & SLUMP_EFFECT_CONVECTION) {
+    const char *forms[] = {"advective", "temam", "skew"};
+    PetscCall(PetscOptionsEList("-convection_form", "Convective terms: advective (rho u.grad u), temam (+ 1/2 rho (div u) u) or skew (+ 1/2 (rho_t + div(rho u)) u; with it the inertial terms do no work on the discrete velocity)", "", forms, 3, forms[prob->convForm], &prob->convForm, NULL));
   }
   PetscCall(PetscOptionsRangeInt("-quadrature_order", "Quadrature: q+1 Gauss-Jacobi points per direction, exact for polynomials of degree 2q+1", "", prob->quadOrder, &prob->quadOrder, NULL, 1, 6));
   PetscOptionsEnd();
@@ -573,14 +587,14 @@ PetscErrorCode SlumpProblemSetPointwise(SlumpProblem prob, PetscDS ds)
   {
     const PetscBool tp = prob->twoPhase;
     PetscCheck(!tp || !prob->momentumSource, prob->comm, PETSC_ERR_SUP, "A scene's own momentum source cannot be mixed by two-phase density");
-    PetscCall(PetscDSSetResidual(ds, 0, prob->momentumSource ? prob->momentumSource : SlumpPwSelectMomentumF0(prob->effects, tp), tp ? pw.tp_f1_u : pw.f1_u));
+    PetscCall(PetscDSSetResidual(ds, 0, prob->momentumSource ? prob->momentumSource : SlumpPwSelectMomentumF0(prob->effects, tp, prob->convForm), tp ? pw.tp_f1_u : pw.f1_u));
     PetscCall(PetscDSSetResidual(ds, 1, SlumpPwContinuityF0, NULL));
-    PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectG0(prob->effects, tp), SlumpPwSelectG1(prob->effects, tp), NULL, tp ? pw.tp_g3_uu : pw.g3_uu));
+    PetscCall(PetscDSSetJacobian(ds, 0, 0, SlumpPwSelectG0(prob->effects, tp, prob->convForm), SlumpPwSelectG1(prob->effects, tp, prob->convForm), NULL, tp ? pw.tp_g3_uu : pw.g3_uu));
     PetscCall(PetscDSSetJacobian(ds, 0, 1, NULL, NULL, tp ? pw.tp_g2_up : pw.g2_up, NULL));
     PetscCall(PetscDSSetJacobian(ds, 1, 0, NULL, SlumpPwContinuityG1, NULL, NULL));
     if (prob->extraField >= 0) PetscCall(prob->extraOps.set_pointwise(prob->extraCtx, prob, ds, prob->extraField));
     /* the momentum equation's dependence on phi through rho and eta */
-    if (tp) PetscCall(PetscDSSetJacobian(ds, 0, prob->extraField, SlumpPwSelectG0Phi(prob->effects), NULL, pw.tp_g2_uphi, NULL));
+    if (tp) PetscCall(PetscDSSetJacobian(ds, 0, prob->extraField, SlumpPwSelectG0Phi(prob->effects, prob->convForm), SlumpPwSelectG1Phi(prob->effects, prob->convForm), pw.tp_g2_uphi, NULL));
   }
   PetscFunctionReturn(0);
 }
@@ -838,6 +852,7 @@ PetscErrorCode SlumpProblemView(SlumpProblem prob, PetscViewer viewer)
   for (PetscInt e = 0; e < 4; ++e)
     if (prob->effects & (1 << e)) PetscCall(PetscViewerASCIIPrintf(viewer, " %s", SlumpEffectNames[e]));
   if (prob->momentumSource) PetscCall(PetscViewerASCIIPrintf(viewer, " scene_source"));
+  else if (prob->effects & SLUMP_EFFECT_CONVECTION) PetscCall(PetscViewerASCIIPrintf(viewer, " (convection form: %s)", prob->convForm == SLUMP_CONVECTION_SKEW ? "skew" : (prob->convForm == SLUMP_CONVECTION_TEMAM ? "temam" : "advective")));
   PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   if (prob->pressurePinned) PetscCall(PetscViewerASCIIPrintf(viewer, "enclosed flow: pressure fixed at one vertex\n"));
   if (prob->extraField >= 0) {

@@ -193,6 +193,13 @@ PETSC_EXTERN PetscErrorCode SlumpProblemSetTwoPhase(SlumpProblem prob, PetscReal
    scale its friction coefficient by m in the band). Wall friction uses the
    same fraction. Option -mixing_viscosity_shift. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetTwoPhaseViscosityShift(SlumpProblem prob, PetscReal shift);
+/* The convective terms (option -convection_form): rho u.grad u (advective,
+   the default), + 1/2 rho (div u) u (temam), or + 1/2 (rho_t + div(rho u)) u
+   (skew: tested with the discrete velocity, the inertial terms then give
+   exactly d/dt int rho |u|^2/2, whatever the discrete divergence and the
+   level set's transport error). */
+typedef enum { SLUMP_CONVECTION_ADVECTIVE = 0, SLUMP_CONVECTION_TEMAM = 1, SLUMP_CONVECTION_SKEW = 2 } SlumpConvectionForm;
+PETSC_EXTERN PetscErrorCode SlumpProblemSetConvectionForm(SlumpProblem prob, SlumpConvectionForm form);
 /* The extra field is a filtered distance E tanh(d/E) (E > 0; 0: a distance):
    the mixing then takes d = E atanh(phi/E). The level set sets it for the
    convective reinitialisation. */

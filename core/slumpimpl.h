@@ -57,6 +57,7 @@ struct _n_SlumpProblem {
   PetscInt      nbcIdx, *bcIdx;
   PetscScalar  *bcVal;
   PetscBool     petscAssembly; /* -assembly petsc: PETSc's DMPlexTSCompute*FEM */
+  PetscInt      convForm;      /* -convection_form: SLUMP_CONVECTION_* */
   /* transport formulation: prescribed velocity */
   SlumpPointFn  uPresc, uPresc_t;
   void         *uPrescCtx;
@@ -94,10 +95,11 @@ PETSC_INTERN PetscErrorCode SlumpProblemFillDiagVector(SlumpProblem, PetscReal t
 PETSC_INTERN PetscErrorCode SlumpProblemSetPointwise(SlumpProblem, PetscDS ds);
 
 /* core pointwise (pointwise.c) */
-PETSC_INTERN PetscPointFunc SlumpPwSelectMomentumF0(PetscInt effects, PetscBool twophase);
-PETSC_INTERN PetscPointJac  SlumpPwSelectG0(PetscInt effects, PetscBool twophase);
-PETSC_INTERN PetscPointJac  SlumpPwSelectG1(PetscInt effects, PetscBool twophase);
-PETSC_INTERN PetscPointJac  SlumpPwSelectG0Phi(PetscInt effects);
+PETSC_INTERN PetscPointFunc SlumpPwSelectMomentumF0(PetscInt effects, PetscBool twophase, PetscInt form);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG0(PetscInt effects, PetscBool twophase, PetscInt form);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG1(PetscInt effects, PetscBool twophase, PetscInt form);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG0Phi(PetscInt effects, PetscInt form);
+PETSC_INTERN PetscPointJac  SlumpPwSelectG1Phi(PetscInt effects, PetscInt form);
 PETSC_INTERN PetscPointFunc SlumpPwSelectAntiPlaneF0(PetscInt effects);
 PETSC_INTERN PetscPointJac  SlumpPwSelectAntiPlaneG0(PetscInt effects);
 PETSC_INTERN void           SlumpPwWallFrictionF0(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);

@@ -100,6 +100,24 @@ static inline void SlumpPwMaterialFraction(PetscScalar phi, const PetscScalar co
 {
   SlumpPwMaterialFractionShifted(phi, 0.0, constants, m, dm);
 }
+/* d^2 m / d phi^2 of the unshifted fraction (the skew term's Jacobian) */
+static inline void SlumpPwMaterialFractionCurvature(PetscScalar phi, const PetscScalar constants[], PetscReal *d2m)
+{
+  const PetscReal w = PetscRealPart(constants[SLUMP_C_MIX_EPS]), E = PetscRealPart(constants[SLUMP_C_MIX_FILTER]);
+  PetscReal       p = PetscRealPart(phi), dd = 1.0, ddd = 0.0;
+  if (E > 0) {
+    const PetscReal r = p / E;
+    if (r <= -1.0 + 1e-12 || r >= 1.0 - 1e-12) {
+      *d2m = 0.0;
+      return;
+    }
+    p   = 0.5 * E * PetscLogReal((1.0 + r) / (1.0 - r));
+    dd  = 1.0 / (1.0 - r * r);
+    ddd = 2.0 * r * dd * dd / E;
+  }
+  if (p <= -w || p >= w) *d2m = 0.0;
+  else *d2m = 0.5 * PETSC_PI * PetscSinReal(PETSC_PI * p / w) / (w * w) * dd * dd - 0.5 * (1.0 + PetscCosReal(PETSC_PI * p / w)) / w * ddd;
+}
 
 /* The viscosity at a point: the model's, mixed with the ambient fluid's
    (m = 1, eta_a = 0: the model alone, bit for bit). eta_m: the model's own. */

@@ -23,6 +23,24 @@ static inline void DPKernel(SlumpRegKind kind, const PetscScalar prm[], PetscRea
   *ty    = mu * P;
 }
 
+/* The weight above a point at depth d below a flat surface, per unit rho g.
+   In one phase (w = 0) it is max(d, 0). With a smoothed Heaviside of
+   half-width w, the density is rho m(phi), phi = -d, and the weight above is
+   int_{-d}^{w} m(s) ds: d itself once d >= w (the band's excess above the
+   contour and its deficit below cancel), and positive in the band above the
+   contour, whose material would otherwise carry no yield stress at all and
+   flow down any slope. (A filtered level set, E > 0, is treated as a
+   distance here.) */
+static inline PetscReal LithoDepth(PetscReal d, PetscReal w)
+{
+  const PetscReal s = -d;
+  if (w <= 0) return d > 0 ? d : 0.0;
+  if (d >= w) return d;
+  if (d <= -w) return 0.0;
+  /* int_s^w m = M(w) - M(s), M(s) = (s - s^2/(2w) + w cos(pi s/w)/pi^2)/2 */
+  return 0.5 * (0.5 * w - w / (PETSC_PI * PETSC_PI)) - 0.5 * (s - s * s / (2.0 * w) + w * PetscCosReal(PETSC_PI * s / w) / (PETSC_PI * PETSC_PI));
+}
+
 /* prm is constants + SLUMP_C_RHEO (the kernels' layout): when the problem
    carries a free-surface table, H is the current surface height h(x). */
 static inline void LithoKernel(SlumpRegKind kind, const PetscScalar prm[], PetscReal g, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
@@ -31,7 +49,7 @@ static inline void LithoKernel(SlumpRegKind kind, const PetscScalar prm[], Petsc
   PetscReal       H = PetscRealPart(prm[4]), depth, tauy, R, dR;
   if (x) (void)SlumpSurfaceHeight(prm - SLUMP_C_RHEO, x[0], &H);
   depth = H - (x ? x[1] : 0.0);
-  tauy  = mu * rho * grav * (depth > 0 ? depth : 0.0);
+  tauy  = mu * rho * grav * LithoDepth(depth, PetscRealPart(prm[SLUMP_C_MIX_EPS - SLUMP_C_RHEO]));
   SlumpYieldShape(kind, r, g, &R, &dR);
   *eta   = etap + tauy * R;
   *de_dg = tauy * dR;

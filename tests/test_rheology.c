@@ -118,6 +118,43 @@ int main(int argc, char **argv)
       }
     }
   }
+  /* lithostatic depth with a smoothed Heaviside of half-width w = 0.2: the
+     yield stress is mu rho g times the weight above, int_{-d}^{w} m(s) ds for
+     a point at depth d below the surface (Simpson's rule here): d itself
+     for d >= w, positive in the band above the contour, 0 above it */
+  {
+    SlumpRheologyPointwise pw;
+    PetscScalar            c[SLUMP_C_NUM + 1] = {0}, u[3] = {0.0, 0.0, 0.3}, u_x[6] = {0.2, 1.5, -0.4, -0.2, 0.0, 0.0};
+    const PetscInt         uOff[2] = {0, 2}, uOff_x[2] = {0, 4};
+    const PetscReal        w = 0.2, H = 2.0, ds[5] = {0.5, 0.2, 0.05, -0.1, -0.25};
+    PetscReal              eta_ref = 0.0;
+    PetscInt               n;
+    PetscCall(SlumpRheologySetType(r, "litho_bercovier"));
+    PetscCall(SlumpRheologySetParameter(r, "viscosity", 1.0));
+    PetscCall(SlumpRheologySetParameter(r, "height", H));
+    PetscCall(SlumpRheologyGetConstants(r, &n, &c[SLUMP_C_RHEO]));
+    c[SLUMP_C_MIX_EPS] = w;
+    PetscCall(SlumpRheologyGetPointwise(r, &pw));
+    for (PetscInt k = 0; k < 5; ++k) {
+      const PetscReal xk[2] = {0.0, H - ds[k]}, a = -ds[k], b = w;
+      PetscReal       D = 0.0;
+      PetscScalar     eta;
+      if (a < b) {
+        const PetscInt N = 2000;
+        for (PetscInt i = 0; i <= N; ++i) {
+          const PetscReal sv = a + (b - a) * i / N, m = sv <= -w ? 1.0 : 0.5 * (1.0 - sv / w - PetscSinReal(PETSC_PI * sv / w) / PETSC_PI);
+          D += (i == 0 || i == N ? 1.0 : (i % 2 ? 4.0 : 2.0)) * m;
+        }
+        D *= (b - a) / (3.0 * N);
+      }
+      pw.eta(2, 2, 0, uOff, uOff_x, u, NULL, u_x, NULL, NULL, NULL, NULL, NULL, 0.0, xk, SLUMP_C_NUM + 1, c, &eta);
+      if (k == 0) eta_ref = PetscRealPart(eta) - 1.0; /* d = 0.5 >= w: weight 0.5 */
+      else if (PetscAbsReal((PetscRealPart(eta) - 1.0) - eta_ref * D / 0.5) > 1e-9 * eta_ref) {
+        printf("litho_bercovier in the mixing band, depth %g: yield part of eta %.12g, expected %.12g (weight above %.12g)\n", (double)ds[k], (double)(PetscRealPart(eta) - 1.0), (double)(eta_ref * D / 0.5), (double)D);
+        failures++;
+      }
+    }
+  }
   /* invalid parameters are refused */
   PetscCall(SlumpRheologySetType(r, SLUMP_RHEOLOGY_PAPANASTASIOU));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
