@@ -28,7 +28,8 @@ PetscErrorCode SlumpErrorHandler(MPI_Comm comm, int line, const char *fun, const
     for (char *c = last_error; *c; ++c)
       if (*c == '\n' || *c == '\r') *c = ' ';
   }
-  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE) {
+  /* PETSC_ERR_USER: PETSc's own "Unknown option x for -name. Available options: ..." */
+  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE) {
     if (p == PETSC_ERROR_INITIAL) {
       MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
       if (!rank || comm == PETSC_COMM_SELF) {

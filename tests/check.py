@@ -886,6 +886,8 @@ INPUT_CASES = [
     ("bad_restart_step", ["-scene", "decay", "-ida_restart_step", "0"], "-ida_restart_step"),
     ("bad_supg_speed", ["-scene", "dam_break", "-levelset_supg_speed", "-1"], "-levelset_supg_speed"),
     ("bad_re", ["-scene", "bingham_dam_break", "-re", "-1"], "-re"),
+    ("bad_convection_form", ["-scene", "dam_break", "-convection_form", "conservative"], "-convection_form"),
+    ("bad_plasticity", ["-scene", "chupin_column", "-plasticity", "mohr"], "-plasticity"),
     ("bad_arrest", ["-scene", "couette_cessation", "-arrest", "speed:1e-3"], "-arrest"),
     ("bad_creep", ["-scene", "couette_cessation", "-arrest", "kinetic_energy:1:creep"], "-arrest"),
 ]
