@@ -132,8 +132,8 @@ PetscPointFunc SlumpPwSelectMomentumF0(PetscInt e, PetscBool tp, PetscInt skew)
   { \
     PetscReal   drho, ds = 0.0; \
     PetscScalar r[3]; \
-    (void)Density(Nf, uOff, u, constants, PETSC_TRUE, &drho); \
-    if (SKEW) (void)SkewFactor(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, SKEW == SLUMP_CONVECTION_SKEW ? PETSC_TRUE : PETSC_FALSE, NULL, NULL, &ds); \
+    if (SKEW) (void)SkewFactor(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, SKEW == SLUMP_CONVECTION_SKEW ? PETSC_TRUE : PETSC_FALSE, NULL, &drho, &ds); \
+    else (void)Density(Nf, uOff, u, constants, PETSC_TRUE, &drho); \
     MomentumPerDensity(dim, u, u_t, u_x, constants, INERTIA, CONV, BODY, r); \
     for (PetscInt c = 0; c < dim; ++c) g0[c] = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0 ? drho * r[c] + (SKEW ? (ds + (SKEW == SLUMP_CONVECTION_SKEW ? 0.5 * u_tShift * drho : 0.0)) * u[c] : 0.0) : 0.0; \
   }
@@ -195,21 +195,25 @@ static inline void G1uuC(PetscInt dim, PetscReal rho, const PetscScalar u[], con
     for (PetscInt e = 0; e < dim; ++e)
       for (PetscInt d = 0; d < dim; ++d) g1[(c * dim + e) * dim + d] = (c == e && full) ? rho * u[d] : 0.0;
 }
-/* The skew term s u: d/d u_e = s delta_ce + rho'/2 phi_x[e] u_c, d/d u_x[e,d] =
-   rho/2 delta_ed u_c (added to the above). */
-static inline void G0uuSkew(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool tp, PetscBool mass, PetscScalar g0[])
+/* With the skew term s u added: d/d u_e gains s delta_ce + rho'/2 phi_x[e] u_c
+   and d/d u_x[e,d] gains rho/2 delta_ed u_c (G1uuCSkew). rho and s come from
+   one evaluation of the mixture. */
+static inline void G0uuICSkew(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscScalar constants[], PetscBool tp, PetscBool mass, PetscReal u_tShift, PetscScalar g0[])
 {
-  PetscReal rho, drho, s;
-  if (PetscRealPart(constants[SLUMP_C_JACMODE]) != 0.0) return;
+  PetscReal       rho, drho, s;
+  const PetscBool full = PetscRealPart(constants[SLUMP_C_JACMODE]) == 0.0;
   s = SkewFactor(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, tp, mass, &rho, &drho, NULL);
+  G0uuIC(dim, rho, u_tShift, u_x, constants, g0);
+  if (!full) return;
   for (PetscInt c = 0; c < dim; ++c) {
     g0[c * dim + c] += s;
     if (tp && mass)
       for (PetscInt e = 0; e < dim; ++e) g0[c * dim + e] += 0.5 * drho * u_x[uOff_x[Nf - 1] + e] * u[c];
   }
 }
-static inline void G1uuSkew(PetscInt dim, PetscReal rho, const PetscScalar u[], const PetscScalar constants[], PetscScalar g1[])
+static inline void G1uuCSkew(PetscInt dim, PetscReal rho, const PetscScalar u[], const PetscScalar constants[], PetscScalar g1[])
 {
+  G1uuC(dim, rho, u, constants, g1);
   if (PetscRealPart(constants[SLUMP_C_JACMODE]) != 0.0) return;
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt e = 0; e < dim; ++e) g1[(c * dim + e) * dim + e] += 0.5 * rho * u[c];
@@ -241,28 +245,23 @@ static void g1_uu_C_tp(SLUMP_PWJ_ARGS, PetscScalar g1[])
 }
 static void g0_uu_ICS(SLUMP_PWJ_ARGS, PetscScalar g0[])
 {
-  G0uuIC(dim, RHO_(PETSC_FALSE), u_tShift, u_x, constants, g0);
-  G0uuSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_FALSE, PETSC_FALSE, g0);
+  G0uuICSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_FALSE, PETSC_FALSE, u_tShift, g0);
 }
 static void g1_uu_CS(SLUMP_PWJ_ARGS, PetscScalar g1[])
 {
-  G1uuC(dim, RHO_(PETSC_FALSE), u, constants, g1);
-  G1uuSkew(dim, RHO_(PETSC_FALSE), u, constants, g1);
+  G1uuCSkew(dim, RHO_(PETSC_FALSE), u, constants, g1);
 }
 static void g0_uu_ICS_tp(SLUMP_PWJ_ARGS, PetscScalar g0[])
 {
-  G0uuIC(dim, RHO_(PETSC_TRUE), u_tShift, u_x, constants, g0);
-  G0uuSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, PETSC_TRUE, g0);
+  G0uuICSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, PETSC_TRUE, u_tShift, g0);
 }
 static void g0_uu_ICT_tp(SLUMP_PWJ_ARGS, PetscScalar g0[])
 {
-  G0uuIC(dim, RHO_(PETSC_TRUE), u_tShift, u_x, constants, g0);
-  G0uuSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, PETSC_FALSE, g0);
+  G0uuICSkew(dim, Nf, uOff, uOff_x, u, u_t, u_x, constants, PETSC_TRUE, PETSC_FALSE, u_tShift, g0);
 }
 static void g1_uu_CS_tp(SLUMP_PWJ_ARGS, PetscScalar g1[])
 {
-  G1uuC(dim, RHO_(PETSC_TRUE), u, constants, g1);
-  G1uuSkew(dim, RHO_(PETSC_TRUE), u, constants, g1);
+  G1uuCSkew(dim, RHO_(PETSC_TRUE), u, constants, g1);
 }
 
 PetscPointJac SlumpPwSelectG0(PetscInt e, PetscBool tp, PetscInt skew)
