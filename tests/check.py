@@ -1297,12 +1297,57 @@ def test_column_collapse():
         fail("kinetic energy at arrest %.3e > 1 %% of its peak %.3e" % (kend, kmax))
     if not s["volume_drift_max"] <= 0.02:
         fail("material volume drift %.3e > 2 %%" % s["volume_drift_max"])
+    check_deposit(dep, s["front"], 0.1)
+
+
+def check_deposit(dep, front, cell):
+    """The deposit h(x) never rises by more than a hundredth of h_i
+    downstream and ends within a cell of the front."""
     for (x0, h0), (x1, h1) in zip(dep, dep[1:]):
         if h1 > h0 + 0.01:
             fail("the deposit rises from %.4f at x = %.3f to %.4f at x = %.3f" % (h0, x0, h1, x1))
     last = max((x for x, h in dep if h > 0), default=0.0)
-    if not abs(last - s["front"]) <= 0.1 + 1e-9:
-        fail("the deposit ends at x = %.3f, the front is at %.3f" % (last, s["front"]))
+    if not abs(last - front) <= cell + 1e-9:
+        fail("the deposit ends at x = %.3f, the front is at %.3f" % (last, front))
+
+
+def test_column_collapse_tall():
+    """Granular column collapse, a = 6.26 (6036 grains; otherwise the set-up
+    of test_column_collapse), on cells of 0.05 h_i (the column is 3.2 cells
+    wide), run to arrest (mean shear rate < 0.05). Checks: (1) the run-out
+    (r_f - r_i)/r_i of the zero contour within 15 % of the thesis' fit
+    1.72 a^0.97 = 10.19 (the layer at least 5 % of h_i thick is reported,
+    not checked: the deposit is about 0.2 h_i high on the axis, so that
+    layer ends well behind the front); (2) the arrest time between the
+    published collapse time 3 sqrt(h_i/g) and the scene's final time 8;
+    (3) the kinetic energy at arrest below 1 % of its peak; (4) the
+    material volume drift at most 2 %; (5) the deposit never rises
+    downstream and ends within a cell of the front."""
+    w = work("column_collapse_tall")
+    run("column_collapse", ["-aspect_ratio", "6.26", "-cell_size", "0.05", "-arrest_stop", "first", "-output_fields", "0"], w)
+    s = summary(w)
+    ser = series(w)
+    with open(os.path.join(w, "deposit.csv")) as f:
+        dep = [(float(r["x"]), float(r["height"])) for r in csv.DictReader(f)]
+    ta = s.get("t_arrest", -1.0)
+    kmax = max(r["kinetic_energy"] for r in ser)
+    kend = ser[-1]["kinetic_energy"]
+    fit = 1.72 * 6.26 ** 0.97
+    print("column_collapse a = 6.26, cells 0.05: run-out (r_f - r_i)/r_i = %.4f (thesis fit %.4f, %+.1f %%), layer >= 5 %% h_i thick %.4f (%+.1f %%), "
+          "axis height %.4f h_i, front %.4f, arrest at t = %.3f, KE %.3e at arrest / peak %.3e, volume drift max %.3e, %d steps, %.1f s"
+          % (s["runout_over_ri"], fit, 100 * (s["runout_over_ri"] / fit - 1), s["runout_thick_over_ri"], 100 * (s["runout_thick_over_ri"] / fit - 1),
+             s["height_axis_over_hi"], s["front"], ta, kend, kmax, s["volume_drift_max"], s["steps"], s["wall_time"]))
+    if abs(s["runout_fit_thesis"] - fit) > 1e-6:
+        fail("the scene's run-out fit %g differs from 1.72 a^0.97 = %g" % (s["runout_fit_thesis"], fit))
+    if not abs(s["runout_over_ri"] / fit - 1) <= 0.15:
+        fail("run-out %.4f is not within 15 %% of the fit %.4f" % (s["runout_over_ri"], fit))
+    if not 3.0 <= ta <= 8.0:
+        fail("arrest time %g outside [3, 8]" % ta)
+    if not kend <= 0.01 * kmax:
+        fail("kinetic energy at arrest %.3e > 1 %% of its peak %.3e" % (kend, kmax))
+    if not s["volume_drift_max"] <= 0.02:
+        fail("material volume drift %.3e > 2 %%" % s["volume_drift_max"])
+    check_deposit(dep, s["front"], 0.05)
 
 
 def test_bingham_dam_break_units():
