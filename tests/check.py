@@ -781,6 +781,40 @@ def test_stability_step_floor():
         fail("line-search floor fell from %g (m = 1e3) to %g (m = 1e6)" % (floors["linesearch", 1e3], floors["linesearch", 1e6]))
 
 
+def test_stability_quasistatic_ic_stiff():
+    """The quasi-static initial solve at high m: bingham_dam_break -re 0
+    (Bn = 0.1, 40 x 15 cells) needs a Papanastasiou-Stokes solve from rest
+    before the first step. IDACalcIC fails there at m = 1e5
+    (IDA_LINESEARCH_FAIL, also from the m = 1e4 state), so slump reaches it
+    by continuation in m. Checks: (1) at m = 1e3 and 1e4 the direct solve
+    works (no continuation), at m = 1e5 continuation is used and succeeds;
+    (2) the initial state converges in m: for the kinetic energy, the mean
+    shear rate and the dissipation, the change from m = 1e4 to 1e5 is at most
+    a fifth of the change from 1e3 to 1e4 (measured: 17-18 times smaller),
+    and (3) the potential energy is the same for all three (the level set is
+    not touched by the solve) to 1e-12."""
+    w = work("quasistatic_ic_stiff")
+    first = {}
+    for m in ("1e3", "1e4", "1e5"):
+        d = os.path.join(w, "m" + m)
+        p = run("bingham_dam_break", ["-re", "0", "-mesh_nx", "40", "-mesh_ny", "15", "-output_fields", "0", "-rheology_papanastasiou_m", m, "-time_final", "0.001"], d)
+        cont = "reached by continuation" in p.stdout
+        first[m] = series(d)[0]
+        r = first[m]
+        print("m = %s: continuation %-3s  t = 0: KE %.10e  mean|gdot| %.10e  dissipation %.10e  yielded %.4f" % (m, "yes" if cont else "no", r["kinetic_energy"], r["mean_shear_rate"], r["dissipation"], r["yielded_fraction"]))
+        if cont != (m == "1e5"):
+            fail("m = %s: continuation %s, expected %s" % (m, "used" if cont else "not used", "used" if m == "1e5" else "not used"))
+    for q in ("kinetic_energy", "mean_shear_rate", "dissipation"):
+        d1 = abs(first["1e4"][q] - first["1e3"][q])
+        d2 = abs(first["1e5"][q] - first["1e4"][q])
+        print("%s: |1e4 - 1e3| = %.3e, |1e5 - 1e4| = %.3e (ratio %.1f)" % (q, d1, d2, d1 / max(d2, 1e-300)))
+        if not d2 <= d1 / 5:
+            fail("%s does not converge in m: |1e5 - 1e4| = %.3e > |1e4 - 1e3| / 5 = %.3e" % (q, d2, d1 / 5))
+    for m in ("1e4", "1e5"):
+        if abs(first[m]["potential_energy"] - first["1e3"]["potential_energy"]) > 1e-12:
+            fail("the potential energy at t = 0 changed with m (%s): the level set moved" % m)
+
+
 # Cessation scenes for the stability sweep: Bn as each scene defines it
 # (Poiseuille and duct start from the Newtonian flow so that any Bn moves).
 SWEEP_SCENES = [

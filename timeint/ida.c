@@ -7,6 +7,7 @@
  * index 1: IDACalcIC finds them (QuasiStaticIC). Arrest is an IDA root
  * function on the mean shear rate. */
 #include "timeintimpl.h"
+#include "slumprheology.h"
 #include <ida/ida.h>
 
 typedef struct {
@@ -131,25 +132,91 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
 
 #define IDACHECK(call) PetscCheck((call) >= 0, comm, PETSC_ERR_LIB, "%s failed", #call)
 
+/* IDACalcIC at the regularisation parameter v (if the rheology has one). */
+static PetscErrorCode CalcICAt(void *mem, SlumpProblem prob, SlumpRheology rheo, const char *regname, PetscReal v, realtype tout, int *flag)
+{
+  PetscFunctionBeginUser;
+  *flag = IDA_ILL_INPUT;
+  if (regname) {
+    PetscCall(SlumpRheologySetParameter(rheo, regname, v));
+    PetscCall(SlumpProblemUpdateConstants(prob));
+  }
+  *flag = IDACalcIC(mem, IDA_YA_YDP_INIT, tout);
+  PetscFunctionReturn(0);
+}
+
+/* IDACalcIC at the target regularisation, by continuation if it fails: a
+   stiff Papanastasiou-Stokes solve from rest (bingham_dam_break -re 0 at
+   m = 1e5: IDA_LINESEARCH_FAIL, also from the m = 1e4 solution) is found
+   from a softer value v0 (10, 100, ... up to 1e4 times softer), then
+   towards the target by factors that halve (in log) after a failure and
+   grow after a success. IDACalcIC leaves yy, yp alone when it fails, so
+   each try starts again from the last consistent state. */
+static PetscErrorCode CalcICContinued(MPI_Comm comm, void *mem, SlumpProblem prob, SlumpRheology rheo, const char *regname, PetscBool stiffer, PetscReal target, realtype t, realtype tout, N_Vector yy, N_Vector yp, PetscInt *ntries, int *flag)
+{
+  PetscReal v = target, f = 10.0;
+  PetscFunctionBeginUser;
+  *ntries = 1;
+  PetscCall(CalcICAt(mem, prob, rheo, regname, target, tout, flag));
+  if (*flag >= 0 || !regname) PetscFunctionReturn(0);
+  for (PetscInt k = 1; k <= 4 && *flag < 0; ++k, ++*ntries) {
+    v = stiffer ? target / PetscPowReal(10.0, k) : target * PetscPowReal(10.0, k);
+    IDACHECK(IDAReInit(mem, t, yy, yp));
+    PetscCall(CalcICAt(mem, prob, rheo, regname, v, tout, flag));
+  }
+  if (*flag < 0) PetscFunctionReturn(0);
+  while (v != target) {
+    PetscReal vt = stiffer ? PetscMin(v * f, target) : PetscMax(v / f, target);
+    IDACHECK(IDAGetConsistentIC(mem, yy, yp));
+    IDACHECK(IDAReInit(mem, t, yy, yp));
+    PetscCall(CalcICAt(mem, prob, rheo, regname, vt, tout, flag));
+    ++*ntries;
+    if (*flag >= 0) {
+      v = vt;
+      f = f * f;
+    } else {
+      f = PetscSqrtReal(f);
+      if (f < 1.05) PetscFunctionReturn(0);
+      /* back to the last consistent state (yy, yp are the state at v) */
+      IDACHECK(IDAReInit(mem, t, yy, yp));
+      PetscCall(CalcICAt(mem, prob, rheo, regname, v, tout, flag));
+      PetscCheck(*flag >= 0, comm, PETSC_ERR_NOT_CONVERGED, "IDACalcIC failed again from its own consistent state at %s = %g", regname, (double)v);
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
 /* Consistent (u, p) and phi' at the current time of a quasi-static DAE:
    IDACalcIC's Newton on the algebraic unknowns, the level set held (a
-   nonlinear Stokes solve). Its first step only sets IDACalcIC's time scale
-   (cj): the last step, else 1e-3 of the run. */
+   nonlinear Stokes solve), with continuation in the regularisation
+   parameter if it fails (up to 1e4 times softer). Its first step only sets
+   IDACalcIC's time scale (cj): the last step, else 1e-3 of the run. */
 static PetscErrorCode QuasiStaticIC(void *mem, SlumpIntegrator ti, N_Vector yy, N_Vector yp, SUNLinearSolver LS, void *user, MPI_Comm comm)
 {
-  realtype  t;
-  int       flag;
-  PetscReal h = ti->h_last > 0 ? ti->h_last : 1e-3 * (ti->tfinal - ti->t0);
+  realtype      t;
+  int           flag;
+  PetscReal     h = ti->h_last > 0 ? ti->h_last : 1e-3 * (ti->tfinal - ti->t0), target = 0.0;
+  SlumpRheology rheo;
+  const char   *regname = NULL;
+  PetscBool     stiffer = PETSC_TRUE;
+  PetscInt      ntries = 0;
   PetscFunctionBeginUser;
   IDACHECK(IDAGetCurrentTime(mem, &t));
+  PetscCall(SlumpProblemGetRheology(ti->prob, &rheo));
+  if (rheo) PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &stiffer));
   /* IDACalcIC's Newton has its own iteration data: no reassembly per
      iterate from the step's (-ida_exact_newton) */
   if (ti->exact_newton) PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, NULL, NULL));
   IDACHECK(IDASetMaxNumItersIC(mem, 20));
   IDACHECK(IDASetMaxNumJacsIC(mem, 20));
-  flag = IDACalcIC(mem, IDA_YA_YDP_INIT, t + h);
+  PetscCall(CalcICContinued(comm, mem, ti->prob, rheo, regname, stiffer, target, t, t + h, yy, yp, &ntries, &flag));
   if (ti->exact_newton) PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, ExactAssemble, user));
-  PetscCheck(flag >= 0, comm, PETSC_ERR_NOT_CONVERGED, "The quasi-static initial solve (IDACalcIC) failed at t = %g: %s", (double)t, IDAGetReturnFlagName(flag));
+  if (regname) {
+    PetscCall(SlumpRheologySetParameter(rheo, regname, target));
+    PetscCall(SlumpProblemUpdateConstants(ti->prob));
+  }
+  PetscCheck(flag >= 0, comm, PETSC_ERR_NOT_CONVERGED, "The quasi-static initial solve (IDACalcIC) failed at t = %g: %s%s", (double)t, IDAGetReturnFlagName(flag), regname ? ", also by continuation from a regularisation 1e4 times softer" : "");
+  if (ntries > 1) PetscCall(PetscPrintf(comm, "quasi-static initial solve at t = %g: %s = %g reached by continuation (%" PetscInt_FMT " IDACalcIC solves)\n", (double)t, regname, (double)target, ntries));
   IDACHECK(IDAGetConsistentIC(mem, yy, yp));
   PetscFunctionReturn(0);
 }
