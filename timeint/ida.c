@@ -148,39 +148,42 @@ static PetscErrorCode CalcICAt(void *mem, SlumpProblem prob, SlumpRheology rheo,
 /* IDACalcIC at the target regularisation, by continuation if it fails: a
    stiff Papanastasiou-Stokes solve from rest (bingham_dam_break -re 0 at
    m = 1e5: IDA_LINESEARCH_FAIL, also from the m = 1e4 solution) is found
-   from a softer value v0 (10, 100, ... up to 1e4 times softer), then
-   towards the target by factors that halve (in log) after a failure and
-   grow after a success. IDACalcIC leaves yy, yp alone when it fails, so
-   each try starts again from the last consistent state. */
-static PetscErrorCode CalcICContinued(MPI_Comm comm, void *mem, SlumpProblem prob, SlumpRheology rheo, const char *regname, PetscBool stiffer, PetscReal target, realtype t, realtype tout, N_Vector yy, N_Vector yp, PetscInt *ntries, int *flag)
+   from a softer value (10, 100, ... up to 1e4 times softer), then towards
+   the target by factors that halve (in log) after a failure and grow after
+   a success. A failed IDACalcIC may have overwritten IDA's internal copy of
+   the state, so every try restarts IDA from yy, yp, which hold the last
+   consistent state (the caller's state until a softer solve succeeds).
+   *reached: the stiffest value solved. */
+static PetscErrorCode CalcICContinued(MPI_Comm comm, void *mem, SlumpProblem prob, SlumpRheology rheo, const char *regname, PetscBool stiffer, PetscReal target, realtype t, realtype tout, N_Vector yy, N_Vector yp, PetscInt *ntries, PetscReal *reached, int *flag)
 {
   PetscReal v = target, f = 10.0;
   PetscFunctionBeginUser;
-  *ntries = 1;
+  *ntries  = 1;
+  *reached = 0.0;
   PetscCall(CalcICAt(mem, prob, rheo, regname, target, tout, flag));
+  if (*flag >= 0) *reached = target;
   if (*flag >= 0 || !regname) PetscFunctionReturn(0);
-  for (PetscInt k = 1; k <= 4 && *flag < 0; ++k, ++*ntries) {
+  for (PetscInt k = 1; k <= 4 && *flag < 0; ++k) {
     v = stiffer ? target / PetscPowReal(10.0, k) : target * PetscPowReal(10.0, k);
     IDACHECK(IDAReInit(mem, t, yy, yp));
     PetscCall(CalcICAt(mem, prob, rheo, regname, v, tout, flag));
+    ++*ntries;
   }
   if (*flag < 0) PetscFunctionReturn(0);
+  *reached = v;
+  IDACHECK(IDAGetConsistentIC(mem, yy, yp));
   while (v != target) {
-    PetscReal vt = stiffer ? PetscMin(v * f, target) : PetscMax(v / f, target);
-    IDACHECK(IDAGetConsistentIC(mem, yy, yp));
+    const PetscReal vt = stiffer ? PetscMin(v * f, target) : PetscMax(v / f, target);
     IDACHECK(IDAReInit(mem, t, yy, yp));
     PetscCall(CalcICAt(mem, prob, rheo, regname, vt, tout, flag));
     ++*ntries;
     if (*flag >= 0) {
-      v = vt;
+      v = *reached = vt;
       f = f * f;
+      IDACHECK(IDAGetConsistentIC(mem, yy, yp));
     } else {
       f = PetscSqrtReal(f);
       if (f < 1.05) PetscFunctionReturn(0);
-      /* back to the last consistent state (yy, yp are the state at v) */
-      IDACHECK(IDAReInit(mem, t, yy, yp));
-      PetscCall(CalcICAt(mem, prob, rheo, regname, v, tout, flag));
-      PetscCheck(*flag >= 0, comm, PETSC_ERR_NOT_CONVERGED, "IDACalcIC failed again from its own consistent state at %s = %g", regname, (double)v);
     }
   }
   PetscFunctionReturn(0);
@@ -193,13 +196,14 @@ static PetscErrorCode CalcICContinued(MPI_Comm comm, void *mem, SlumpProblem pro
    IDACalcIC's time scale (cj): the last step, else 1e-3 of the run. */
 static PetscErrorCode QuasiStaticIC(void *mem, SlumpIntegrator ti, N_Vector yy, N_Vector yp, SUNLinearSolver LS, void *user, MPI_Comm comm)
 {
-  realtype      t;
-  int           flag;
-  PetscReal     h = ti->h_last > 0 ? ti->h_last : 1e-3 * (ti->tfinal - ti->t0), target = 0.0;
-  SlumpRheology rheo;
-  const char   *regname = NULL;
-  PetscBool     stiffer = PETSC_TRUE;
-  PetscInt      ntries = 0;
+  realtype       t;
+  int            flag;
+  PetscReal      h = ti->h_last > 0 ? ti->h_last : 1e-3 * (ti->tfinal - ti->t0), target = 0.0, reached = 0.0;
+  SlumpRheology  rheo;
+  const char    *regname = NULL;
+  PetscBool      stiffer = PETSC_TRUE;
+  PetscInt       ntries  = 0;
+  PetscErrorCode ierr;
   PetscFunctionBeginUser;
   IDACHECK(IDAGetCurrentTime(mem, &t));
   PetscCall(SlumpProblemGetRheology(ti->prob, &rheo));
@@ -209,13 +213,18 @@ static PetscErrorCode QuasiStaticIC(void *mem, SlumpIntegrator ti, N_Vector yy, 
   if (ti->exact_newton) PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, NULL, NULL));
   IDACHECK(IDASetMaxNumItersIC(mem, 20));
   IDACHECK(IDASetMaxNumJacsIC(mem, 20));
-  PetscCall(CalcICContinued(comm, mem, ti->prob, rheo, regname, stiffer, target, t, t + h, yy, yp, &ntries, &flag));
+  /* on every path, error or not, the model's parameter and the step's
+     Jacobian callback are put back before returning */
+  ierr = CalcICContinued(comm, mem, ti->prob, rheo, regname, stiffer, target, t, t + h, yy, yp, &ntries, &reached, &flag);
   if (ti->exact_newton) PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, ExactAssemble, user));
   if (regname) {
     PetscCall(SlumpRheologySetParameter(rheo, regname, target));
     PetscCall(SlumpProblemUpdateConstants(ti->prob));
   }
-  PetscCheck(flag >= 0, comm, PETSC_ERR_NOT_CONVERGED, "The quasi-static initial solve (IDACalcIC) failed at t = %g: %s%s", (double)t, IDAGetReturnFlagName(flag), regname ? ", also by continuation from a regularisation 1e4 times softer" : "");
+  PetscCall(ierr);
+  if (flag < 0 && regname && reached > 0)
+    SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "The quasi-static initial solve (IDACalcIC) failed at t = %g: %s at %s = %g; continuation from softer values reached %s = %g", (double)t, IDAGetReturnFlagName(flag), regname, (double)target, regname, (double)reached);
+  PetscCheck(flag >= 0, comm, PETSC_ERR_NOT_CONVERGED, "The quasi-static initial solve (IDACalcIC) failed at t = %g: %s%s", (double)t, IDAGetReturnFlagName(flag), regname ? ", also at a regularisation 1e4 times softer" : "");
   if (ntries > 1) PetscCall(PetscPrintf(comm, "quasi-static initial solve at t = %g: %s = %g reached by continuation (%" PetscInt_FMT " IDACalcIC solves)\n", (double)t, regname, (double)target, ntries));
   IDACHECK(IDAGetConsistentIC(mem, yy, yp));
   PetscFunctionReturn(0);
