@@ -690,6 +690,15 @@ PetscErrorCode SlumpProblemUpdateConstants(SlumpProblem prob)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemSetRheologyParameter(SlumpProblem prob, const char name[], PetscReal value)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(prob->rheo, prob->comm, PETSC_ERR_ORDER, "Set a rheology before setting its parameter %s", name);
+  PetscCall(SlumpRheologySetParameter(prob->rheo, name, value));
+  PetscCall(SlumpProblemUpdateConstants(prob));
+  PetscFunctionReturn(0);
+}
+
 static void AreaObjective(SLUMP_PW_ARGS, PetscScalar f[])
 {
   f[0] = 1.0;

@@ -247,6 +247,8 @@ PETSC_EXTERN PetscErrorCode SlumpProblemView(SlumpProblem prob, PetscViewer view
 /* Push the current physical and rheological parameters into the kernels'
    constants (call after changing them between solves). */
 PETSC_EXTERN PetscErrorCode SlumpProblemUpdateConstants(SlumpProblem prob);
+/* sets a rheology parameter and pushes the new constants to the assembly */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetRheologyParameter(SlumpProblem prob, const char name[], PetscReal value);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetDM(SlumpProblem prob, DM *dm);
 PETSC_EXTERN PetscErrorCode SlumpProblemCreateVector(SlumpProblem prob, Vec *X);
 PETSC_EXTERN PetscErrorCode SlumpProblemCreateMatrix(SlumpProblem prob, Mat *J);

@@ -133,13 +133,12 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
 #define IDACHECK(call) PetscCheck((call) >= 0, comm, PETSC_ERR_LIB, "%s failed", #call)
 
 /* IDACalcIC at the regularisation parameter v (if the rheology has one). */
-static PetscErrorCode CalcICAt(void *mem, SlumpProblem prob, SlumpRheology rheo, const char *regname, PetscReal v, realtype tout, int *flag)
+static PetscErrorCode CalcICAt(void *mem, SlumpProblem prob, const char *regname, PetscReal v, realtype tout, int *flag)
 {
   PetscFunctionBeginUser;
   *flag = IDA_ILL_INPUT;
   if (regname) {
-    PetscCall(SlumpRheologySetParameter(rheo, regname, v));
-    PetscCall(SlumpProblemUpdateConstants(prob));
+    PetscCall(SlumpProblemSetRheologyParameter(prob, regname, v));
   }
   *flag = IDACalcIC(mem, IDA_YA_YDP_INIT, tout);
   PetscFunctionReturn(0);
@@ -154,19 +153,19 @@ static PetscErrorCode CalcICAt(void *mem, SlumpProblem prob, SlumpRheology rheo,
    the state, so every try restarts IDA from yy, yp, which hold the last
    consistent state (the caller's state until a softer solve succeeds).
    *reached: the stiffest value solved. */
-static PetscErrorCode CalcICContinued(MPI_Comm comm, void *mem, SlumpProblem prob, SlumpRheology rheo, const char *regname, PetscBool stiffer, PetscReal target, realtype t, realtype tout, N_Vector yy, N_Vector yp, PetscInt *ntries, PetscReal *reached, int *flag)
+static PetscErrorCode CalcICContinued(MPI_Comm comm, void *mem, SlumpProblem prob, const char *regname, PetscBool stiffer, PetscReal target, realtype t, realtype tout, N_Vector yy, N_Vector yp, PetscInt *ntries, PetscReal *reached, int *flag)
 {
   PetscReal v = target, f = 10.0;
   PetscFunctionBeginUser;
   *ntries  = 1;
   *reached = 0.0;
-  PetscCall(CalcICAt(mem, prob, rheo, regname, target, tout, flag));
+  PetscCall(CalcICAt(mem, prob, regname, target, tout, flag));
   if (*flag >= 0) *reached = target;
   if (*flag >= 0 || !regname) PetscFunctionReturn(0);
   for (PetscInt k = 1; k <= 4 && *flag < 0; ++k) {
     v = stiffer ? target / PetscPowReal(10.0, k) : target * PetscPowReal(10.0, k);
     IDACHECK(IDAReInit(mem, t, yy, yp));
-    PetscCall(CalcICAt(mem, prob, rheo, regname, v, tout, flag));
+    PetscCall(CalcICAt(mem, prob, regname, v, tout, flag));
     ++*ntries;
   }
   if (*flag < 0) PetscFunctionReturn(0);
@@ -175,7 +174,7 @@ static PetscErrorCode CalcICContinued(MPI_Comm comm, void *mem, SlumpProblem pro
   while (v != target) {
     const PetscReal vt = stiffer ? PetscMin(v * f, target) : PetscMax(v / f, target);
     IDACHECK(IDAReInit(mem, t, yy, yp));
-    PetscCall(CalcICAt(mem, prob, rheo, regname, vt, tout, flag));
+    PetscCall(CalcICAt(mem, prob, regname, vt, tout, flag));
     ++*ntries;
     if (*flag >= 0) {
       v = *reached = vt;
@@ -215,11 +214,10 @@ static PetscErrorCode QuasiStaticIC(void *mem, SlumpIntegrator ti, N_Vector yy, 
   IDACHECK(IDASetMaxNumJacsIC(mem, 20));
   /* on every path, error or not, the model's parameter and the step's
      Jacobian callback are put back before returning */
-  ierr = CalcICContinued(comm, mem, ti->prob, rheo, regname, stiffer, target, t, t + h, yy, yp, &ntries, &reached, &flag);
+  ierr = CalcICContinued(comm, mem, ti->prob, regname, stiffer, target, t, t + h, yy, yp, &ntries, &reached, &flag);
   if (ti->exact_newton) PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, ExactAssemble, user));
   if (regname) {
-    PetscCall(SlumpRheologySetParameter(rheo, regname, target));
-    PetscCall(SlumpProblemUpdateConstants(ti->prob));
+    PetscCall(SlumpProblemSetRheologyParameter(ti->prob, regname, target));
   }
   PetscCall(ierr);
   if (flag < 0 && regname && reached > 0)

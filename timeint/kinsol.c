@@ -231,8 +231,7 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
     if (set) {
       last = larger_stiffer ? (v >= target * (1 - 1e-12)) : (v <= target * (1 + 1e-12));
       if (last) v = target;
-      PetscCall(SlumpRheologySetParameter(rheo, regname, v));
-      PetscCall(SlumpProblemUpdateConstants(prob));
+      PetscCall(SlumpProblemSetRheologyParameter(prob, regname, v));
     } else last = PETSC_TRUE;
     PetscCall(SlumpImplicitSolverSolve(s, 0.0, 0.0, NULL, X, &conv, &nits, &lits));
     PetscCall(VecDuplicate(X, &F));
