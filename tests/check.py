@@ -1105,21 +1105,32 @@ def test_levelset_convective():
         fail("convective: %d steps for one revolution (> 3000)" % s["steps"])
 
 
+def test_levelset_convective_fine():
+    """The convective method's band converges with the mesh: with a filter
+    of E = 6 cells (-reinit_convective_width 6), the worst sub-triangle of
+    the 3-cell band deviates by 7.6 % on 64 x 64 cells and 3.5 % on
+    128 x 128 (measured; mean 0.9 %, area error -0.04 %, 1511 steps,
+    about 10 min). Held to the issue's 5 % everywhere in the band, and the
+    area to its 1 %."""
+    w = work("levelset_convective_fine")
+    run("levelset_rotation", ["-mesh_n", "128", "-reinit", "convective", "-reinit_convective_width", "6", "-time_rtol", "1e-3", "-output_fields", "0"], w)
+    s = summary(w)
+    print("convective, 128 x 128, E = 6 cells: area error %.3e, band | |grad d| - 1 |: mean %.3e max %.3e (1 cell: %.3e, %.3e); %d steps, %.1f s"
+          % (s["area_error"], s["grad_dev_mean"], s["grad_dev_max"], s["grad_dev_mean_1cell"], s["grad_dev_max_1cell"], s["steps"], s["wall_time"]))
+    if not abs(s["area_error"]) <= 1e-2:
+        fail("convective (128 x 128): area error after one revolution %.3e > 1e-2" % s["area_error"])
+    if not s["grad_dev_max"] <= 0.05:
+        fail("convective (128 x 128, E = 6 cells): max | |grad d| - 1 | in the band %.3e > 0.05" % s["grad_dev_max"])
+    if not s["grad_dev_mean"] <= 0.02:
+        fail("convective (128 x 128, E = 6 cells): mean | |grad d| - 1 | in the band %.3e > 0.02" % s["grad_dev_mean"])
+
+
 def test_levelset_hamilton_jacobi():
     s = levelset_rotation("hamilton_jacobi")
     if not s["grad_dev_max_reinit"] <= 0.05:
         fail("hamilton_jacobi: max | |grad phi| - 1 | in the band %.3e > 0.05" % s["grad_dev_max_reinit"])
     if not s["reinitialisations"] >= 10:
         fail("hamilton_jacobi: only %d reinitialisations" % s["reinitialisations"])
-
-
-def test_levelset_convective():
-    """Coupled transport-redistancing: the distance recovered from the
-    filtered state, E atanh(phi/E), has |grad d| within 5 % of 1 in the
-    band on average (area-weighted), with no between-step action."""
-    s = levelset_rotation("convective")
-    if not s["grad_dev_mean"] <= 0.05:
-        fail("convective: mean | |grad d| - 1 | in the band %.3e > 0.05" % s["grad_dev_mean"])
 
 
 def test_levelset_unknowns():
