@@ -137,9 +137,7 @@ static PetscErrorCode CalcICAt(void *mem, SlumpProblem prob, const char *regname
 {
   PetscFunctionBeginUser;
   *flag = IDA_ILL_INPUT;
-  if (regname) {
-    PetscCall(SlumpProblemSetRheologyParameter(prob, regname, v));
-  }
+  if (regname) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, v));
   *flag = IDACalcIC(mem, IDA_YA_YDP_INIT, tout);
   PetscFunctionReturn(0);
 }
@@ -216,9 +214,7 @@ static PetscErrorCode QuasiStaticIC(void *mem, SlumpIntegrator ti, N_Vector yy, 
      Jacobian callback are put back before returning */
   ierr = CalcICContinued(comm, mem, ti->prob, regname, stiffer, target, t, t + h, yy, yp, &ntries, &reached, &flag);
   if (ti->exact_newton) PetscCall(SlumpSUNLinSolSetExactNewton(LS, mem, ExactAssemble, user));
-  if (regname) {
-    PetscCall(SlumpProblemSetRheologyParameter(ti->prob, regname, target));
-  }
+  if (regname) PetscCall(SlumpProblemSetRheologyParameter(ti->prob, regname, target));
   PetscCall(ierr);
   if (flag < 0 && regname && reached > 0)
     SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "The quasi-static initial solve (IDACalcIC) failed at t = %g: %s at %s = %g; continuation from softer values reached %s = %g", (double)t, IDAGetReturnFlagName(flag), regname, (double)target, regname, (double)reached);
