@@ -419,8 +419,20 @@ def test_poiseuille_parallel():
 
 def test_couette_parallel():
     """couette_cessation on 2 ranks agrees with 1 rank within 10x rtol: arrest
-    time and every series value (kinetic energy, mean shear rate) at the
-    output times while the flow moves (mean shear rate > 1e-2)."""
+    time, and every output of the kinetic energy, mean and L2 shear rates and
+    dissipation, each difference scaled by that series' largest value.
+
+    The 2-rank run is not bitwise reproducible: with MUMPS on 2 ranks the
+    roundoff differs from run to run when the machine is loaded (with GMRES
+    and block-Jacobi PETSc LU instead, three loaded runs were identical), and
+    a roundoff-level change can flip one of IDA's step decisions. The
+    trajectory then differs at the level of rtol, which is what this test
+    allows. It does not compare
+    values relative to themselves near arrest: there the kinetic energy
+    behaves like (T - t)^2, so a shift of T by 3e-4 relative (within the
+    tolerance) changes the energy at t = 0.1 by 2e-2 relative. 1-rank runs
+    at rtol x (1 +- 1e-3), which take other steps, differ from the nominal run
+    by 1.4e-4 of the series' largest value and 4.4e-4 in arrest time."""
     w = work("couette_parallel")
     rtol = 1e-4
     opts = ["-time_rtol", str(rtol), "-time_atol", "1e-6", "-output_fields", "0", "-time_final", "0.12"]
@@ -432,15 +444,14 @@ def test_couette_parallel():
     if not rel <= 10 * rtol:
         fail("arrest times differ by %g relative, expected <= %g" % (rel, 10 * rtol))
     a, b = series(os.path.join(w, "p1")), series(os.path.join(w, "p2"))
-    worst = 0.0
-    for r1, r2 in zip(a, b):
-        if r1["mean_shear_rate"] < 1e-2:
-            continue
-        for k in ("kinetic_energy", "mean_shear_rate"):
-            worst = max(worst, abs(r1[k] - r2[k]) / abs(r1[k]))
-    print("largest relative difference of the series while flowing: %.2e" % worst)
-    if not worst <= 10 * rtol:
-        fail("series differ by %g relative, expected <= %g" % (worst, 10 * rtol))
+    if len(a) != len(b):
+        fail("series have %d and %d outputs" % (len(a), len(b)))
+    for k in ("kinetic_energy", "mean_shear_rate", "l2_shear_rate", "dissipation"):
+        scale = max(abs(r[k]) for r in a)
+        worst = max(abs(r1[k] - r2[k]) for r1, r2 in zip(a, b)) / scale
+        print("%s: largest difference %.2e of the series' largest value %.6e" % (k, worst, scale))
+        if not worst <= 10 * rtol:
+            fail("%s series differ by %g of their largest value, expected <= %g" % (k, worst, 10 * rtol))
 
 
 def test_demo():
