@@ -427,12 +427,12 @@ def test_couette_parallel():
     and block-Jacobi PETSc LU instead, three loaded runs were identical), and
     a roundoff-level change can flip one of IDA's step decisions. The
     trajectory then differs at the level of rtol, which is what this test
-    allows. It does not compare
-    values relative to themselves near arrest: there the kinetic energy
-    behaves like (T - t)^2, so a shift of T by 3e-4 relative (within the
-    tolerance) changes the energy at t = 0.1 by 2e-2 relative. 1-rank runs
-    at rtol x (1 +- 1e-3), which take other steps, differ from the nominal run
-    by 1.4e-4 of the series' largest value and 4.4e-4 in arrest time."""
+    allows. It does not compare values relative to themselves near arrest:
+    there the kinetic energy behaves like (T - t)^2, so a shift of T by 3e-4
+    relative (within the tolerance) changes the energy at t = 0.1 by 2e-2
+    relative. 1-rank runs at rtol x (1 +- 1e-3), which take other steps,
+    differ from the nominal run by 1.4e-4 of the series' largest value and
+    4.4e-4 in arrest time."""
     w = work("couette_parallel")
     rtol = 1e-4
     opts = ["-time_rtol", str(rtol), "-time_atol", "1e-6", "-output_fields", "0", "-time_final", "0.12"]
