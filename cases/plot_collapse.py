@@ -5,9 +5,14 @@ in the units of the column (Z = x/r_i, H = h/h_i; T = t sqrt(2 g / r_i) as
 in Martin & Moyce, or T = t sqrt(g / h_i) with --time-scale gravity, the
 default for column_collapse), with the reference data if given, the energy
 partition (kinetic, potential released, dissipated) and, when the run wrote
-deposit.csv, the final deposit over the initial column.
+deposit.csv, the final deposit over the initial column. With --compare
+DIR (repeatable) the deposits of other runs of the same column are drawn
+on the same axes and their differences from this run's deposit printed:
+the largest height difference and the L1 difference over the deposit's
+area (both in units of h_i and of the area).
 
 usage: python3 cases/plot_collapse.py OUTPUT_DIR [--reference CSV] [--g 9.81]
+                                      [--compare DIR [--compare DIR ...]]
 Reads interface.csv, series.csv, summary.csv (and deposit.csv); writes
 OUTPUT_DIR/front.png, OUTPUT_DIR/energy.png (and OUTPUT_DIR/deposit.png) with
 gnuplot (Debian package gnuplot-nox). The reference CSV has columns T,Z
@@ -25,6 +30,60 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+def profile(path):
+    """(x, h) pairs of a deposit.csv, sorted in x; h = 0 where the column is empty"""
+    out = []
+    for r in rows(path):
+        h = float(r["height"])
+        out.append((float(r["x"]), 0.0 if math.isnan(h) else h))
+    return sorted(out)
+
+
+def height_at(prof, x):
+    """the profile's height at x, linear between samples, 0 beyond them"""
+    if x < prof[0][0] or x > prof[-1][0]:
+        return 0.0
+    for (x0, h0), (x1, h1) in zip(prof, prof[1:]):
+        if x <= x1:
+            return h0 if x1 == x0 else h0 + (h1 - h0) * (x - x0) / (x1 - x0)
+    return prof[-1][1]
+
+
+def area(prof):
+    return sum(0.5 * (x1 - x0) * (h0 + h1) for (x0, h0), (x1, h1) in zip(prof, prof[1:]))
+
+
+def thick_front(prof, hi):
+    """the last x where the deposit is at least 5 % of h_i thick"""
+    xs = [x for x, h in prof if h >= 0.05 * hi]
+    return xs[-1] if xs else 0.0
+
+
+def difference(p, q):
+    """largest |p - q| and the L1 norm of p - q, on the union of both samples"""
+    xs = sorted(set(x for x, _ in p) | set(x for x, _ in q))
+    d = [abs(height_at(p, x) - height_at(q, x)) for x in xs]
+    return max(d), sum(0.5 * (x1 - x0) * (d0 + d1) for x0, x1, d0, d1 in zip(xs, xs[1:], d, d[1:]))
+
+
+def compared_deposits(a, ri, hi):
+    """the --compare runs' deposits, after checking they are runs of the same column"""
+    if len(a.compare_label) > len(a.compare):
+        raise SystemExit("plot_collapse.py: %d --compare-label for %d --compare; give at most one label per --compare DIR"
+                         % (len(a.compare_label), len(a.compare)))
+    out = []
+    for k, d in enumerate(a.compare):
+        dep, summ = os.path.join(d, "deposit.csv"), os.path.join(d, "summary.csv")
+        if not (os.path.exists(dep) and os.path.exists(summ)):
+            raise SystemExit("plot_collapse.py: --compare %s: no deposit.csv and summary.csv there; give the output directory of a finished collapse run" % d)
+        s = rows(summ)[0]
+        if abs(float(s["column_width"]) - ri) > 1e-12 * ri or abs(float(s["column_height"]) - hi) > 1e-12 * hi:
+            raise SystemExit("plot_collapse.py: --compare %s: its column is %s x %s, not %g x %g; compare runs of the same column"
+                             % (d, s["column_width"], s["column_height"], ri, hi))
+        out.append((a.compare_label[k] if k < len(a.compare_label) else d, profile(dep)))
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("dir")
@@ -33,11 +92,17 @@ def main():
     ap.add_argument("--reference-title", default="reference", help="legend of the reference points")
     ap.add_argument("--g", type=float, default=9.81)
     ap.add_argument("--title", default=None)
+    ap.add_argument("--label", default="deposit", help="legend of this run's deposit")
+    ap.add_argument("--compare", action="append", default=[], metavar="DIR",
+                    help="another run's output directory whose deposit is overlaid (repeatable)")
+    ap.add_argument("--compare-label", action="append", default=[], metavar="TEXT",
+                    help="legend of the matching --compare run (default: its directory)")
     ap.add_argument("--time-scale", choices=["martin", "gravity"], default=None,
                     help="T = t sqrt(2 g/r_i) (martin, default) or t sqrt(g/h_i) (gravity, default for column_collapse)")
     a = ap.parse_args()
     s = rows(os.path.join(a.dir, "summary.csv"))[0]
     ri, hi = float(s["column_width"]), float(s["column_height"])
+    others = compared_deposits(a, ri, hi)  # checked before anything is written
     if a.time_scale is None:
         a.time_scale = "gravity" if s["scene"] == "column_collapse" else "martin"
     if s["scene"] == "column_collapse":
@@ -91,19 +156,32 @@ plot 'energy.dat' using 1:2 with lines lw 2 title 'potential energy released', '
     wrote = ["front.png", "energy.png"]
     dep = os.path.join(a.dir, "deposit.csv")
     if os.path.exists(dep):
+        mine = profile(dep)
         with open(os.path.join(a.dir, "deposit.dat"), "w") as f:
-            for r in rows(dep):
-                f.write("%.8g %.8g\n" % (float(r["x"]) / ri, float(r["height"]) / hi))
+            for x, h in mine:
+                f.write("%.8g %.8g\n" % (x / ri, h / hi))
         with open(os.path.join(a.dir, "column.dat"), "w") as f:
             f.write("0 1\n1 1\n1 0\n")
+        dplots = ["'column.dat' using 1:2 with lines dt 2 lw 2 title 'initial column'",
+                  "'deposit.dat' using 1:2 with lines lw 2 title '%s'" % a.label.replace("'", "")]
+        print("%-28s axis height %.4g h_i, front (h >= 5 %% h_i) %.4g r_i" % (a.label, mine[0][1] / hi, thick_front(mine, hi) / ri))
+        for k, (label, other) in enumerate(others):
+            name = "deposit_compare_%d.dat" % k
+            with open(os.path.join(a.dir, name), "w") as f:
+                for x, h in other:
+                    f.write("%.8g %.8g\n" % (x / ri, h / hi))
+            dplots.append("'%s' using 1:2 with lines lw 2 title '%s'" % (name, label.replace("'", "")))
+            dmax, dl1 = difference(mine, other)
+            print("%-28s axis height %.4g h_i, front (h >= 5 %% h_i) %.4g r_i; against %s: max |dh| %.4g h_i, L1 %.4g of the area"
+                  % (label, other[0][1] / hi, thick_front(other, hi) / ri, a.label, dmax / hi, dl1 / area(mine)))
         script += """set output 'deposit.png'
 set title '%s: deposit at t = %s'
 set xlabel 'x / r_i'
 set ylabel 'h / h_i'
 set key top right
 set size ratio -1
-plot 'column.dat' using 1:2 with lines dt 2 lw 2 title 'initial column', 'deposit.dat' using 1:2 with lines lw 2 title 'deposit'
-""" % (title.replace("'", ""), "%g" % float(s["t_final"]))
+plot %s
+""" % (title.replace("'", ""), "%g" % float(s["t_final"]), ", ".join(dplots))
         wrote.append("deposit.png")
     subprocess.run(["gnuplot"], input=script, text=True, cwd=a.dir, check=True)
     print("wrote " + ", ".join(os.path.join(a.dir, w) for w in wrote))

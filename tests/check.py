@@ -1673,6 +1673,60 @@ def test_chupin_lithostatic_arrest():
         fail("pl: energy imbalance %+.3f of the released energy > 10 %%" % imb)
 
 
+def test_plot_collapse_compare():
+    """cases/plot_collapse.py --compare on two hand-made runs of a unit
+    column (r_i = h_i = 1): deposits h = 1 - x/2 on [0, 2] and 1 - x/3 on
+    [0, 3], sampled on different grids. Their difference is x/6 up to x = 2
+    and 1 - x/3 beyond, so the largest |dh| is 1/3 (at x = 2) and the L1
+    difference 1/3 + 1/6 = 1/2 of the first deposit's area 1; the thick
+    fronts (h >= 5 % h_i) are the last such samples, 1.5 and 2.25. Both
+    are asserted to 1e-4. Also: a --compare directory without a deposit, or
+    with another column, stops the script with one error line, a non-zero
+    exit and nothing written."""
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cases", "plot_collapse.py")
+    base = work("plot_collapse_compare")
+
+    def fake_run(name, xs, slope, width=1.0):
+        d = os.path.join(base, name)
+        os.makedirs(d)
+        with open(os.path.join(d, "summary.csv"), "w") as f:
+            f.write("scene,cells,column_width,column_height,t_final\nbingham_dam_break,10,%r,1.0,5\n" % width)
+        with open(os.path.join(d, "interface.csv"), "w") as f:
+            f.write("t,x_max,height_at_0\n0,1,1\n5,%r,1\n" % xs[-1])
+        with open(os.path.join(d, "series.csv"), "w") as f:
+            f.write("t,kinetic_energy,potential_energy,dissipation\n0,0,0.5,0\n5,0,0.4,0.02\n")
+        with open(os.path.join(d, "deposit.csv"), "w") as f:
+            f.write("x,height\n" + "".join("%r,%r\n" % (x, max(0.0, 1 - x / slope)) for x in xs))
+        return d
+
+    a = fake_run("a", [0.5 * k for k in range(5)], 2.0)
+    b = fake_run("b", [0.75 * k for k in range(5)], 3.0)
+    p = subprocess.run([sys.executable, script, a, "--label", "A", "--compare", b, "--compare-label", "B"], capture_output=True, text=True)
+    if p.returncode != 0:
+        fail("plot_collapse.py --compare failed: %s%s" % (p.stdout, p.stderr))
+    print(p.stdout.strip())
+    line = [l for l in p.stdout.splitlines() if l.startswith("B ")]
+    if not line:
+        fail("no comparison line for B in: %s" % p.stdout)
+    words = line[0].replace(",", " ").replace(";", " ").split()
+    got = {"axis": float(words[words.index("height") + 1]), "front": float(words[words.index("h_i)") + 1]),
+           "max": float(words[words.index("|dh|") + 1]), "l1": float(words[words.index("L1") + 1])}
+    for k, v in (("axis", 1.0), ("front", 2.25), ("max", 1.0 / 3.0), ("l1", 0.5)):
+        if not abs(got[k] - v) <= 1e-4:
+            fail("plot_collapse.py --compare: %s = %g, expected %g" % (k, got[k], v))
+    if not os.path.exists(os.path.join(a, "deposit_compare_0.dat")) or not os.path.exists(os.path.join(a, "deposit.png")):
+        fail("plot_collapse.py --compare wrote no deposit_compare_0.dat or deposit.png")
+    c = fake_run("c", [0.5 * k for k in range(5)], 2.0, width=2.0)
+    os.remove(os.path.join(b, "deposit.csv"))
+    for other, what in ((b, "no deposit.csv"), (c, "its column is")):
+        p = subprocess.run([sys.executable, script, c if other is b else a, "--compare", other], capture_output=True, text=True)
+        err = p.stderr.strip().splitlines()
+        if p.returncode == 0 or len(err) != 1 or "--compare" not in err[0] or what not in err[0]:
+            fail("plot_collapse.py --compare %s: expected one error line naming --compare (%s), got exit %d: %s" % (other, what, p.returncode, p.stderr))
+    if os.path.exists(os.path.join(c, "front.dat")):
+        fail("plot_collapse.py wrote front.dat before rejecting --compare")
+
+
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
 
 if __name__ == "__main__":
