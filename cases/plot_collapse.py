@@ -80,7 +80,8 @@ def compared_deposits(a, ri, hi):
         if abs(float(s["column_width"]) - ri) > 1e-12 * ri or abs(float(s["column_height"]) - hi) > 1e-12 * hi:
             raise SystemExit("plot_collapse.py: --compare %s: its column is %s x %s, not %g x %g; compare runs of the same column"
                              % (d, s["column_width"], s["column_height"], ri, hi))
-        out.append((a.compare_label[k] if k < len(a.compare_label) else d, profile(dep)))
+        label = a.compare_label[k] if k < len(a.compare_label) else d
+        out.append(("%s, t = %.4g" % (label, float(s["t_final"])), profile(dep)))
     return out
 
 
@@ -157,31 +158,32 @@ plot 'energy.dat' using 1:2 with lines lw 2 title 'potential energy released', '
     dep = os.path.join(a.dir, "deposit.csv")
     if os.path.exists(dep):
         mine = profile(dep)
+        label = "%s, t = %.4g" % (a.label, float(s["t_final"])) if others else a.label
         with open(os.path.join(a.dir, "deposit.dat"), "w") as f:
             for x, h in mine:
                 f.write("%.8g %.8g\n" % (x / ri, h / hi))
         with open(os.path.join(a.dir, "column.dat"), "w") as f:
             f.write("0 1\n1 1\n1 0\n")
         dplots = ["'column.dat' using 1:2 with lines dt 2 lw 2 title 'initial column'",
-                  "'deposit.dat' using 1:2 with lines lw 2 title '%s'" % a.label.replace("'", "")]
-        print("%-28s axis height %.4g h_i, front (h >= 5 %% h_i) %.4g r_i" % (a.label, mine[0][1] / hi, thick_front(mine, hi) / ri))
-        for k, (label, other) in enumerate(others):
+                  "'deposit.dat' using 1:2 with lines lw 2 title '%s'" % label.replace("'", "")]
+        print("%-28s axis height %.4g h_i, front (h >= 5 %% h_i) %.4g r_i" % (label, mine[0][1] / hi, thick_front(mine, hi) / ri))
+        for k, (olabel, other) in enumerate(others):
             name = "deposit_compare_%d.dat" % k
             with open(os.path.join(a.dir, name), "w") as f:
                 for x, h in other:
                     f.write("%.8g %.8g\n" % (x / ri, h / hi))
-            dplots.append("'%s' using 1:2 with lines lw 2 title '%s'" % (name, label.replace("'", "")))
+            dplots.append("'%s' using 1:2 with lines lw 2 title '%s'" % (name, olabel.replace("'", "")))
             dmax, dl1 = difference(mine, other)
             print("%-28s axis height %.4g h_i, front (h >= 5 %% h_i) %.4g r_i; against %s: max |dh| %.4g h_i, L1 %.4g of the area"
-                  % (label, other[0][1] / hi, thick_front(other, hi) / ri, a.label, dmax / hi, dl1 / area(mine)))
+                  % (olabel, other[0][1] / hi, thick_front(other, hi) / ri, a.label, dmax / hi, dl1 / area(mine)))
         script += """set output 'deposit.png'
-set title '%s: deposit at t = %s'
+set title '%s: %s'
 set xlabel 'x / r_i'
 set ylabel 'h / h_i'
 set key top right
 set size ratio -1
 plot %s
-""" % (title.replace("'", ""), "%g" % float(s["t_final"]), ", ".join(dplots))
+""" % (title.replace("'", ""), "deposits" if others else "deposit at t = %g" % float(s["t_final"]), ", ".join(dplots))
         wrote.append("deposit.png")
     subprocess.run(["gnuplot"], input=script, text=True, cwd=a.dir, check=True)
     print("wrote " + ", ".join(os.path.join(a.dir, w) for w in wrote))

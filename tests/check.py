@@ -1705,7 +1705,7 @@ def test_plot_collapse_compare():
     if p.returncode != 0:
         fail("plot_collapse.py --compare failed: %s%s" % (p.stdout, p.stderr))
     print(p.stdout.strip())
-    line = [l for l in p.stdout.splitlines() if l.startswith("B ")]
+    line = [l for l in p.stdout.splitlines() if l.startswith("B, t = 5 ")]
     if not line:
         fail("no comparison line for B in: %s" % p.stdout)
     words = line[0].replace(",", " ").replace(";", " ").split()
