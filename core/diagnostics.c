@@ -143,6 +143,16 @@ PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, 
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemComputePotentialEnergy(SlumpProblem prob, PetscReal t, Vec X, PetscReal *ep)
+{
+  PetscPointFunc obj[1] = {prob->twoPhase ? PotentialEnergyTP : PotentialEnergy};
+  PetscFunctionBeginUser;
+  *ep = 0.0;
+  if (!(prob->effects & SLUMP_EFFECT_BODY_FORCE) || prob->formulation != SLUMP_FORMULATION_PLANE) PetscFunctionReturn(0);
+  PetscCall(SlumpProblemComputeIntegrals(prob, t, X, 1, obj, ep));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d)
 {
   SlumpRheologyPointwise pw;

@@ -298,6 +298,9 @@ PETSC_EXTERN const char *const SlumpDiagnosticNames[];
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnosticList(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, const SlumpDiagnosticKind kinds[], PetscReal values[]);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean);
+/* potential energy of the material, -int m rho g.x (0 without gravity or
+   outside the plane formulation): the potential_energy of the diagnostics */
+PETSC_EXTERN PetscErrorCode SlumpProblemComputePotentialEnergy(SlumpProblem prob, PetscReal t, Vec X, PetscReal *ep);
 /* Boundary over which the flow rate diagnostic integrates u . n. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetFlowRateBoundary(SlumpProblem prob, const char label[]);
 /* Mean of velocity component comp over the boundary `label` (collective). */

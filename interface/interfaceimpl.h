@@ -47,6 +47,9 @@ struct _n_SlumpLevelSet {
   FILE          *log;
   PetscBool      volume_correction;
   PetscReal      volume_shift; /* sum of the corrections' shifts of phi */
+  /* potential energy the between-step actions add to the material (sums of
+     the jumps across each reinitialisation and each volume correction) */
+  PetscReal      energy_reinit, energy_correction;
   PetscInt       ngauge;
   PetscReal      gauge[4];
   /* free-surface height handed to the kernels between steps */

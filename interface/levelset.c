@@ -385,7 +385,7 @@ PetscErrorCode SlumpLevelSetRecordVolume(SlumpLevelSet ls, PetscReal t, Vec X)
     PetscCall(SlumpLevelSetComputeExtent(ls, t, X, box));
     for (PetscInt g = 0; g < ls->ngauge; ++g) PetscCall(SlumpLevelSetComputeHeightAt(ls, t, X, ls->gauge[g], &hg[g], &found[g]));
     if (ls->log) {
-      PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "%.10g,%.12g,%.6e,%" PetscInt_FMT ",%.8g,%.8g,%.8g", (double)t, (double)ls->volume, (double)(ls->volume0 > 0 ? ls->volume / ls->volume0 - 1.0 : 0.0), ls->nreinit, (double)box[0], (double)box[1], (double)box[3]));
+      PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "%.10g,%.12g,%.6e,%" PetscInt_FMT ",%.8g,%.8g,%.8g,%.8e,%.8e", (double)t, (double)ls->volume, (double)(ls->volume0 > 0 ? ls->volume / ls->volume0 - 1.0 : 0.0), ls->nreinit, (double)box[0], (double)box[1], (double)box[3], (double)ls->energy_reinit, (double)ls->energy_correction));
       for (PetscInt g = 0; g < ls->ngauge; ++g) {
         if (found[g]) PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",%.8g", (double)hg[g]));
         else PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",nan"));
@@ -406,8 +406,9 @@ static PetscErrorCode CorrectVolume(SlumpLevelSet ls, PetscReal t, Vec X)
   const PetscInt *idx;
   PetscInt        n, rStart;
   PetscScalar    *x;
-  PetscReal       d0 = 0.0, d1, f0, f1, V, applied = 0.0;
+  PetscReal       d0 = 0.0, d1, f0, f1, V, applied = 0.0, e0, e1;
   PetscFunctionBeginUser;
+  PetscCall(SlumpProblemComputePotentialEnergy(ls->prob, t, X, &e0));
   PetscCall(SlumpProblemGetExtraFieldIS(ls->prob, &is));
   PetscCall(ISGetLocalSize(is, &n));
   PetscCall(ISGetIndices(is, &idx));
@@ -434,16 +435,24 @@ static PetscErrorCode CorrectVolume(SlumpLevelSet ls, PetscReal t, Vec X)
   PetscCall(ISRestoreIndices(is, &idx));
   PetscCall(ISDestroy(&is));
   ls->volume_shift += applied;
+  PetscCall(SlumpProblemComputePotentialEnergy(ls->prob, t, X, &e1));
+  ls->energy_correction += e1 - e0;
   PetscFunctionReturn(0);
 }
 
 PetscErrorCode SlumpLevelSetReinitialise(SlumpLevelSet ls, PetscReal t, Vec X, PetscBool *changed)
 {
+  PetscReal e0, e1;
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
   if (!ls->reinit.apply) PetscFunctionReturn(0);
+  PetscCall(SlumpProblemComputePotentialEnergy(ls->prob, t, X, &e0));
   PetscCall(ls->reinit.apply(ls, ls->prob, t, X, changed));
-  if (*changed) ls->nreinit++;
+  if (*changed) {
+    ls->nreinit++;
+    PetscCall(SlumpProblemComputePotentialEnergy(ls->prob, t, X, &e1));
+    ls->energy_reinit += e1 - e0;
+  }
   if (*changed && ls->volume_correction && ls->have_volume0) PetscCall(CorrectVolume(ls, t, X));
   PetscFunctionReturn(0);
 }
@@ -583,7 +592,7 @@ PetscErrorCode SlumpLevelSetSetLog(SlumpLevelSet ls, const char path[])
   PetscCallMPI(MPI_Comm_rank(ls->comm, &rank));
   if (rank == 0) {
     PetscCall(PetscFOpen(PETSC_COMM_SELF, path, "w", &ls->log));
-    PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "t,volume,drift,reinitialisations,x_min,x_max,y_max"));
+    PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "t,volume,drift,reinitialisations,x_min,x_max,y_max,energy_reinit,energy_correction"));
     for (PetscInt g = 0; g < ls->ngauge; ++g) PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",height_at_%g", (double)ls->gauge[g]));
     PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "\n"));
   }
@@ -601,6 +610,14 @@ PetscErrorCode SlumpLevelSetGetVolumeShift(SlumpLevelSet ls, PetscReal *shift)
 {
   PetscFunctionBeginUser;
   *shift = ls->volume_shift;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetGetEnergyInput(SlumpLevelSet ls, PetscReal *reinit, PetscReal *correction)
+{
+  PetscFunctionBeginUser;
+  if (reinit) *reinit = ls->energy_reinit;
+  if (correction) *correction = ls->energy_correction;
   PetscFunctionReturn(0);
 }
 

@@ -107,6 +107,13 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetReinitialise(SlumpLevelSet ls, PetscRea
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetVolumeCorrection(SlumpLevelSet ls, PetscBool on);
 /* Sum of the shifts applied by the volume correction (its total effect on phi). */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetGetVolumeShift(SlumpLevelSet ls, PetscReal *shift);
+/* Potential energy the between-step actions have added to the material so
+   far: the sums of its jumps across the reinitialisations and across the
+   volume corrections (0 without gravity). A closed energy budget reads
+   kinetic + dissipated = released + reinit + correction, less the floor's
+   friction and the ambient fluid's dissipation. Also the columns
+   energy_reinit and energy_correction of interface.csv. */
+PETSC_EXTERN PetscErrorCode SlumpLevelSetGetEnergyInput(SlumpLevelSet ls, PetscReal *reinit, PetscReal *correction);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetGetStats(SlumpLevelSet ls, PetscReal *volume0, PetscReal *volume, PetscReal *max_drift, PetscInt *nreinit);
 /* Smallest edge length used by the stabilisation and the widths. */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetGetMeshSize(SlumpLevelSet ls, PetscReal *h);

@@ -101,6 +101,12 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
     PetscCall(SlumpSceneAddResult(scene, "volume_correction_shift", shift));
   }
   {
+    PetscReal ereinit, ecorr;
+    PetscCall(SlumpLevelSetGetEnergyInput(ls, &ereinit, &ecorr));
+    PetscCall(SlumpSceneAddResult(scene, "energy_reinit", ereinit));
+    PetscCall(SlumpSceneAddResult(scene, "energy_correction", ecorr));
+  }
+  {
     /* the front of the layer at least 5 % of h_i thick: the zero contour's
        end includes a film thinner than a cell that creeps on ahead */
     const PetscInt npt = 801;
