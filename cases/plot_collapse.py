@@ -4,7 +4,8 @@ the front x_max and the material height on the symmetry axis against time,
 in the units of the column (Z = x/r_i, H = h/h_i; T = t sqrt(2 g / r_i) as
 in Martin & Moyce, or T = t sqrt(g / h_i) with --time-scale gravity, the
 default for column_collapse), with the reference data if given, the energy
-partition (kinetic, potential released, dissipated) and, when the run wrote
+partition (kinetic, potential released, dissipated, and the potential
+energy the reinitialisations and volume corrections added) and, when the run wrote
 deposit.csv, the final deposit over the initial column. With --compare
 DIR (repeatable) the deposits of other runs of the same column are drawn
 on the same axes and their differences from this run's deposit printed:
@@ -119,14 +120,20 @@ def main():
     # energies: potential released, kinetic, dissipated (trapezoidal in time)
     ser = rows(os.path.join(a.dir, "series.csv"))
     ep0 = float(ser[0]["potential_energy"])
-    diss, prev = 0.0, None
+    diss, prev, j = 0.0, None, 0
+    # potential energy added by the reinitialisations and volume corrections
+    # (interface.csv, one row per step; absent in runs older than the tally)
+    tally = "energy_reinit" in ifc[0]
     with open(os.path.join(a.dir, "energy.dat"), "w") as f:
         for r in ser:
             t, d = float(r["t"]), float(r["dissipation"])
             if prev:
                 diss += 0.5 * (t - prev[0]) * (d + prev[1])
             prev = (t, d)
-            f.write("%.8g %.8g %.8g %.8g\n" % (t, ep0 - float(r["potential_energy"]), float(r["kinetic_energy"]), diss))
+            while j + 1 < len(ifc) and float(ifc[j + 1]["t"]) <= t * (1 + 1e-12):
+                j += 1
+            added = float(ifc[j]["energy_reinit"]) + float(ifc[j]["energy_correction"]) if tally else 0.0
+            f.write("%.8g %.8g %.8g %.8g %.8g\n" % (t, ep0 - float(r["potential_energy"]), float(r["kinetic_energy"]), diss, added))
     title = a.title or "%s, %s cells" % (s["scene"], s["cells"])
     plots = ["'front.dat' using 1:2 with lines lw 2 title 'front Z = x_f / r_i'",
              "'front.dat' using 1:3 with lines lw 2 title 'height on the axis H = h / h_i'"]
@@ -152,8 +159,10 @@ set output 'energy.png'
 set xlabel 't'
 set ylabel 'energy per unit depth'
 set key top left
-plot 'energy.dat' using 1:2 with lines lw 2 title 'potential energy released', 'energy.dat' using 1:3 with lines lw 2 title 'kinetic', 'energy.dat' using 1:4 with lines lw 2 title 'dissipated (material)', 'energy.dat' using 1:($2-$3-$4) with lines dt 2 title 'released - kinetic - dissipated'
-""" % (title.replace("'", ""), tlabel, ", ".join(plots))
+plot 'energy.dat' using 1:2 with lines lw 2 title 'potential energy released', 'energy.dat' using 1:3 with lines lw 2 title 'kinetic', 'energy.dat' using 1:4 with lines lw 2 title 'dissipated (material)'%s
+""" % (title.replace("'", ""), tlabel, ", ".join(plots),
+       ", 'energy.dat' using 1:5 with lines lw 2 title 'added by reinitialisation and volume correction', 'energy.dat' using 1:($2+$5-$3-$4) with lines dt 2 lw 2 lc 'black' title 'released + added - kinetic - dissipated'"
+       if tally else ", 'energy.dat' using 1:($2-$3-$4) with lines dt 2 title 'released - kinetic - dissipated'")
     wrote = ["front.png", "energy.png"]
     dep = os.path.join(a.dir, "deposit.csv")
     if os.path.exists(dep):
