@@ -1689,8 +1689,8 @@ def test_chupin_lithostatic_arrest():
     energy budget that closes: the energy put in, the potential energy
     released plus what the redistancing and the volume correction added,
     equals the dissipation in the material plus the kinetic energy left to
-    10 % (the floor's Coulomb friction, not in the dissipation, makes up
-    most of the rest). Measured: 6.01 J/m released, 0.80 J/m added,
+    10 % (the floor's Coulomb friction and the air's dissipation are not
+    in the budget). Measured: 6.01 J/m released, 0.80 J/m added,
     imbalance -5.8 % (+6.7 % without the added energy).
     About 8 to 15 minutes: label slow."""
     d = work("chupin_pl_arrest")
