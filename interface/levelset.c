@@ -399,16 +399,16 @@ PetscErrorCode SlumpLevelSetRecordVolume(SlumpLevelSet ls, PetscReal t, Vec X)
 
 /* Global volume correction: phi <- phi - delta with delta such that the
    material volume is back to its initial value (secant iterations on the
-   exact volume of the linear interpolant). */
-static PetscErrorCode CorrectVolume(SlumpLevelSet ls, PetscReal t, Vec X)
+   exact volume of the linear interpolant). e0: the potential energy of X on
+   entry, for the tally of what the correction adds. */
+static PetscErrorCode CorrectVolume(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal e0)
 {
   IS              is;
   const PetscInt *idx;
   PetscInt        n, rStart;
   PetscScalar    *x;
-  PetscReal       d0 = 0.0, d1, f0, f1, V, applied = 0.0, e0, e1;
+  PetscReal       d0 = 0.0, d1, f0, f1, V, applied = 0.0, e1;
   PetscFunctionBeginUser;
-  PetscCall(SlumpProblemComputePotentialEnergy(ls->prob, t, X, &e0));
   PetscCall(SlumpProblemGetExtraFieldIS(ls->prob, &is));
   PetscCall(ISGetLocalSize(is, &n));
   PetscCall(ISGetIndices(is, &idx));
@@ -452,8 +452,8 @@ PetscErrorCode SlumpLevelSetReinitialise(SlumpLevelSet ls, PetscReal t, Vec X, P
     ls->nreinit++;
     PetscCall(SlumpProblemComputePotentialEnergy(ls->prob, t, X, &e1));
     ls->energy_reinit += e1 - e0;
+    if (ls->volume_correction && ls->have_volume0) PetscCall(CorrectVolume(ls, t, X, e1));
   }
-  if (*changed && ls->volume_correction && ls->have_volume0) PetscCall(CorrectVolume(ls, t, X));
   PetscFunctionReturn(0);
 }
 
@@ -467,7 +467,9 @@ static PetscErrorCode PostStep(void *ctx, SlumpProblem prob, PetscInt step, Pets
     else if (ls->volume_correction && ls->have_volume0) {
       /* a method without a between-step action (none, convective): the
          global volume correction alone, every reinit_every steps */
-      PetscCall(CorrectVolume(ls, t, X));
+      PetscReal e0;
+      PetscCall(SlumpProblemComputePotentialEnergy(prob, t, X, &e0));
+      PetscCall(CorrectVolume(ls, t, X, e0));
       *changed = PETSC_TRUE;
     }
   }

@@ -59,11 +59,11 @@ def energy_budget(outdir):
     ser = series(outdir)
     with open(os.path.join(outdir, "interface.csv")) as f:
         ifc = [r for r in csv.DictReader(f) if float(r["t"]) <= ser[-1]["t"] * (1 + 1e-12)]
-    added = float(ifc[-1]["energy_reinit"]) + float(ifc[-1]["energy_correction"])
+    reinit, correction = float(ifc[-1]["energy_reinit"]), float(ifc[-1]["energy_correction"])
+    added = reinit + correction
     released = ser[0]["potential_energy"] - ser[-1]["potential_energy"]
     diss, ke = dissipated(ser), ser[-1]["kinetic_energy"] - ser[0]["kinetic_energy"]
-    return {"released": released, "dissipated": diss, "kinetic": ke, "added": added,
-            "reinit": float(ifc[-1]["energy_reinit"]), "correction": float(ifc[-1]["energy_correction"]),
+    return {"released": released, "dissipated": diss, "kinetic": ke, "added": added, "reinit": reinit, "correction": correction,
             "imbalance": (diss + ke - released - added) / (released + added)}
 
 
