@@ -52,7 +52,33 @@ typedef struct {
   PetscInt         nout, newton_since, lin_since;
   SlumpDiagnostics last;
   PetscBool        quiet;
+  /* the energy dissipated since the start (material, ambient fluid and
+     walls), by the trapezoidal rule over the steps: the last two steps'
+     time, rate and running total */
+  struct {
+    PetscReal t, rate, total;
+  } diss[2];
+  PetscInt ndiss;
 } RunCtx;
+
+/* The energy dissipated up to t, from the last recorded step at or before
+   t and the rate at t. */
+static PetscReal Dissipated(const RunCtx *r, PetscReal t, PetscReal rate)
+{
+  const PetscInt b = r->ndiss > 1 && r->diss[1].t > t ? 0 : 1;
+  if (r->ndiss == 0) return 0.0;
+  return r->diss[b].total + 0.5 * (t - r->diss[b].t) * (rate + r->diss[b].rate);
+}
+
+static void RecordDissipation(RunCtx *r, PetscReal t, PetscReal rate)
+{
+  const PetscReal total = Dissipated(r, t, rate);
+  r->diss[0]          = r->diss[1];
+  r->diss[1].t        = t;
+  r->diss[1].rate     = rate;
+  r->diss[1].total    = total;
+  r->ndiss++;
+}
 
 static PetscErrorCode OpenCSV(RunCtx *r, const char dir[], const char name[], const char header[], FILE **fp)
 {
@@ -80,16 +106,26 @@ static PetscErrorCode StepMonitor(SlumpIntegrator ti, const SlumpStepRecord *s, 
     PetscCall(SlumpProblemComputeDiagnosticList(r->prob, s->t, s->X, 1, &ke, &e));
     if (r->steps) fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d,%.12e\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails, (double)e);
   }
+  {
+    PetscReal rate[3];
+    PetscCall(SlumpProblemComputeDissipation(r->prob, s->t, s->X, rate));
+    RecordDissipation(r, s->t, rate[0] + rate[1] + rate[2]);
+  }
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode WriteDiagnostics(RunCtx *r, PetscReal t, Vec X, PetscReal h, PetscInt order)
 {
   SlumpDiagnostics d;
+  PetscReal        rate;
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemComputeDiagnostics(r->prob, t, X, &d));
   r->last = d;
-  if (r->series) fprintf(r->series, "%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e\n", (double)t, (double)d.kinetic_energy, (double)d.mean_shear_rate, (double)d.max_shear_rate, (double)d.l2_shear_rate, (double)d.dissipation, (double)d.yielded_fraction, (double)d.flow_rate, (double)d.potential_energy);
+  rate    = d.dissipation + d.dissipation_ambient + d.dissipation_wall;
+  if (r->ndiss == 0) RecordDissipation(r, t, rate); /* the initial state */
+  if (r->series)
+    fprintf(r->series, "%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e\n", (double)t, (double)d.kinetic_energy, (double)d.mean_shear_rate, (double)d.max_shear_rate, (double)d.l2_shear_rate, (double)d.dissipation, (double)d.yielded_fraction, (double)d.flow_rate, (double)d.potential_energy, (double)d.dissipation_ambient, (double)d.dissipation_wall,
+            (double)Dissipated(r, t, rate));
   if (r->writer) PetscCall(SlumpFieldWriterWrite(r->writer, t, X));
   if (!r->quiet) PetscCall(PetscPrintf(r->comm, "t %10.4e  h %9.3e  q %d  newton %4d  linear %4d  KE %11.5e  mean|gdot| %11.5e\n", (double)t, (double)h, (int)order, (int)r->newton_since, (int)r->lin_since, (double)d.kinetic_energy, (double)d.mean_shear_rate));
   r->newton_since = r->lin_since = 0;
@@ -249,7 +285,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
 
   /* --- outputs --- */
   PetscCall(SlumpMakeDirectory(comm, dir));
-  PetscCall(OpenCSV(&r, dir, "series.csv", "t,kinetic_energy,mean_shear_rate,max_shear_rate,l2_shear_rate,dissipation,yielded_fraction,flow_rate,potential_energy", &r.series));
+  PetscCall(OpenCSV(&r, dir, "series.csv", "t,kinetic_energy,mean_shear_rate,max_shear_rate,l2_shear_rate,dissipation,yielded_fraction,flow_rate,potential_energy,dissipation_ambient,dissipation_wall,dissipated", &r.series));
   if (!scene->steady) PetscCall(OpenCSV(&r, dir, "steps.csv", "t,h,order,newton_its,lin_its,err_test_fails,conv_fails,kinetic_energy", &r.steps));
   if (fields) PetscCall(SlumpFieldWriterCreate(prob, dir, &r.writer));
 

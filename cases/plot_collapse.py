@@ -117,9 +117,13 @@ def main():
         for r in ifc:
             h = float(r[axis]) if r[axis] != "nan" else 0.0
             f.write("%.8g %.8g %.8g\n" % (float(r["t"]) * tscale, float(r["x_max"]) / ri, h / hi))
-    # energies: potential released, kinetic, dissipated (trapezoidal in time)
+    # energies: potential released, kinetic, dissipated: the run's own total
+    # over its steps (material, ambient fluid and friction walls), or in runs
+    # older than that column the material's dissipation integrated over the
+    # outputs (trapezoidal rule)
     ser = rows(os.path.join(a.dir, "series.csv"))
     ep0 = float(ser[0]["potential_energy"])
+    total = "dissipated" in ser[0]
     diss, prev, j = 0.0, None, 0
     # potential energy added by the reinitialisations and volume corrections
     # (interface.csv, one row per step; absent in runs older than the tally)
@@ -127,7 +131,9 @@ def main():
     with open(os.path.join(a.dir, "energy.dat"), "w") as f:
         for r in ser:
             t, d = float(r["t"]), float(r["dissipation"])
-            if prev:
+            if total:
+                diss = float(r["dissipated"]) - float(ser[0]["dissipated"])
+            elif prev:
                 diss += 0.5 * (t - prev[0]) * (d + prev[1])
             prev = (t, d)
             while j + 1 < len(ifc) and float(ifc[j + 1]["t"]) <= t * (1 + 1e-12):
@@ -159,8 +165,8 @@ set output 'energy.png'
 set xlabel 't'
 set ylabel 'energy per unit depth'
 set key top left
-plot 'energy.dat' using 1:2 with lines lw 2 title 'potential energy released', 'energy.dat' using 1:3 with lines lw 2 title 'kinetic', 'energy.dat' using 1:4 with lines lw 2 title 'dissipated (material)'%s
-""" % (title.replace("'", ""), tlabel, ", ".join(plots),
+plot 'energy.dat' using 1:2 with lines lw 2 title 'potential energy released', 'energy.dat' using 1:3 with lines lw 2 title 'kinetic', 'energy.dat' using 1:4 with lines lw 2 title '%s'%s
+""" % (title.replace("'", ""), tlabel, ", ".join(plots), "dissipated (material, ambient, walls)" if total else "dissipated (material)",
        ", 'energy.dat' using 1:5 with lines lw 2 title 'added by reinitialisation and volume correction', 'energy.dat' using 1:($2+$5-$3-$4) with lines dt 2 lw 2 lc 'black' title 'released + added - kinetic - dissipated'"
        if tally else ", 'energy.dat' using 1:($2-$3-$4) with lines dt 2 title 'released - kinetic - dissipated'")
     wrote = ["front.png", "energy.png"]

@@ -430,13 +430,15 @@ PetscErrorCode SlumpAssembleIntegrals(SlumpProblem prob, PetscReal t, Vec locX, 
 /* Over the faces of `label`: comp < 0: the flux int u . n (outward normal);
    comp >= 0: int u_comp. Also returns the length. 3-point Gauss on each
    edge, the velocity evaluated in the face's cell (collective). */
-PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const char labelname[], PetscInt comp, PetscReal *integral, PetscReal *length)
+PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const char labelname[], PetscInt comp, PetscBdPointFunc func, PetscReal *integral, PetscReal *length)
 {
   SlumpAssembly      a = prob->assembly;
   DMLabel            label;
   IS                 valIS;
   PetscFE            fe;
-  const PetscScalar *xa;
+  PetscDS            ds;
+  const PetscScalar *xa, *constants;
+  PetscInt           nc;
   PetscReal          Q[2] = {0.0, 0.0};
   const PetscReal    gp[3] = {-0.7745966692414834, 0.0, 0.7745966692414834}, gw[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
   PetscInt           fStart, fEnd, dim = a->dim, N = a->NbTot;
@@ -444,6 +446,8 @@ PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const 
   PetscCheck(dim == 2, PETSC_COMM_SELF, PETSC_ERR_SUP, "Boundary flux is implemented in 2D");
   PetscCall(DMGetLabel(prob->dm, labelname, &label));
   PetscCall(DMGetField(prob->dm, 0, NULL, (PetscObject *)&fe));
+  PetscCall(DMGetDS(prob->dm, &ds));
+  PetscCall(PetscDSGetConstants(ds, &nc, &constants));
   PetscCall(DMPlexGetHeightStratum(prob->dm, 1, &fStart, &fEnd));
   PetscCall(VecGetArrayRead(locX, &xa));
   PetscCall(DMLabelGetValueIS(label, &valIS));
@@ -493,15 +497,36 @@ PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const 
             const PetscReal s = 0.5 * (gp[q] + 1.0), x = xf[0][0] + s * (xf[1][0] - xf[0][0]), y = xf[0][1] + s * (xf[1][1] - xf[0][1]);
             for (PetscInt d = 0; d < 2; ++d) xi[q * 2 + d] = invJ[d * 2 + 0] * (x - v0[0]) + invJ[d * 2 + 1] * (y - v0[1]) - 1.0;
           }
-          PetscCall(PetscFECreateTabulation(fe, 1, 3, xi, 0, &T));
-          for (PetscInt q = 0; q < 3; ++q) {
-            PetscReal u[2] = {0, 0};
-            for (PetscInt b = 0; b < a->Nb[0]; ++b)
-              for (PetscInt cc2 = 0; cc2 < 2; ++cc2) u[cc2] += T->T[0][(q * a->Nb[0] + b) * 2 + cc2] * PetscRealPart(xa[a->lidx[c * N + a->off[0] + b]]);
-            Q[0] += 0.5 * len * gw[q] * (comp < 0 ? u[0] * nrm[0] + u[1] * nrm[1] : u[comp]);
-            Q[1] += 0.5 * len * gw[q];
+          if (func) { /* every field's values (no gradients) at the face's points */
+            PetscScalar uq[3][3 * SLUMP_MAX_FIELDS], zero[3 * SLUMP_MAX_FIELDS * 3] = {0}, f;
+            PetscInt    zoff[SLUMP_MAX_FIELDS + 1] = {0};
+            PetscCall(PetscArrayzero(&uq[0][0], 3 * 3 * SLUMP_MAX_FIELDS));
+            for (PetscInt fi = 0; fi < a->Nf; ++fi) {
+              PetscFE fef;
+              PetscCall(DMGetField(prob->dm, fi, NULL, (PetscObject *)&fef));
+              PetscCall(PetscFECreateTabulation(fef, 1, 3, xi, 0, &T));
+              for (PetscInt q = 0; q < 3; ++q)
+                for (PetscInt b = 0; b < a->Nb[fi]; ++b)
+                  for (PetscInt k = 0; k < a->Nc[fi]; ++k) uq[q][a->uOff[fi] + k] += T->T[0][(q * a->Nb[fi] + b) * a->Nc[fi] + k] * xa[a->lidx[c * N + a->off[fi] + b]];
+              PetscCall(PetscTabulationDestroy(&T));
+            }
+            for (PetscInt q = 0; q < 3; ++q) {
+              const PetscReal s = 0.5 * (gp[q] + 1.0), xq[2] = {xf[0][0] + s * (xf[1][0] - xf[0][0]), xf[0][1] + s * (xf[1][1] - xf[0][1])};
+              func(dim, a->Nf, 0, a->uOff, a->uOff_x, uq[q], zero, zero, zoff, zoff, NULL, NULL, NULL, 0.0, xq, nrm, nc, constants, &f);
+              Q[0] += 0.5 * len * gw[q] * PetscRealPart(f);
+              Q[1] += 0.5 * len * gw[q];
+            }
+          } else {
+            PetscCall(PetscFECreateTabulation(fe, 1, 3, xi, 0, &T));
+            for (PetscInt q = 0; q < 3; ++q) {
+              PetscReal u[2] = {0, 0};
+              for (PetscInt b = 0; b < a->Nb[0]; ++b)
+                for (PetscInt cc2 = 0; cc2 < 2; ++cc2) u[cc2] += T->T[0][(q * a->Nb[0] + b) * 2 + cc2] * PetscRealPart(xa[a->lidx[c * N + a->off[0] + b]]);
+              Q[0] += 0.5 * len * gw[q] * (comp < 0 ? u[0] * nrm[0] + u[1] * nrm[1] : u[comp]);
+              Q[1] += 0.5 * len * gw[q];
+            }
+            PetscCall(PetscTabulationDestroy(&T));
           }
-          PetscCall(PetscTabulationDestroy(&T));
         }
       }
       PetscCall(ISRestoreIndices(ptIS, &pts));

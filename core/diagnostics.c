@@ -63,6 +63,29 @@ static void PotentialEnergyTP(SLUMP_PW_ARGS, PetscScalar f[])
   f[0] *= Fraction(Nf, uOff, u, constants);
 }
 
+/* the ambient fluid's dissipation, (1 - m_v) eta_ambient ||gdot||^2 (m_v: the viscosity's fraction) */
+static void AmbientDissipation(SLUMP_PW_ARGS, PetscScalar f[])
+{
+  PetscReal m, dm, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+  SlumpPwViscousFraction(u[uOff[Nf - 1]], constants, &m, &dm);
+  f[0] = (1.0 - m) * PetscRealPart(constants[SLUMP_C_MIX_ETA]) * g * g;
+}
+
+/* The friction walls' dissipation at the local solution prob->locX (filled
+   by the caller; collective). */
+static PetscErrorCode WallDissipation(SlumpProblem prob, PetscReal *power)
+{
+  PetscFunctionBeginUser;
+  *power = 0.0;
+  for (PetscInt b = 0; b < prob->nbc; ++b) {
+    PetscReal p;
+    if (prob->bc[b].kind != SLUMP_BC_FRICTION) continue;
+    PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, prob->bc[b].label, 0, SlumpPwWallFrictionPower, &p, NULL));
+    *power += p;
+  }
+  PetscFunctionReturn(0);
+}
+
 static void MaterialFraction(SLUMP_PW_ARGS, PetscScalar f[])
 {
   f[0] = Fraction(Nf, uOff, u, constants);
@@ -156,17 +179,20 @@ PetscErrorCode SlumpProblemComputePotentialEnergy(SlumpProblem prob, PetscReal t
 PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d)
 {
   SlumpRheologyPointwise pw;
-  PetscReal              r[7], area = prob->area;
+  PetscReal              r[8], area = prob->area;
   const PetscBool        body = (prob->effects & SLUMP_EFFECT_BODY_FORCE) && prob->formulation == SLUMP_FORMULATION_PLANE ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
   PetscCall(SlumpProblemFillLocal(prob, t, X));
-  r[6] = 0.0;
+  r[6] = r[7] = 0.0;
   if (prob->twoPhase) {
-    PetscPointFunc obj[7] = {KineticEnergyTP, ShearRateTP, ShearRateSquaredTP, pw.tp_diss, pw.tp_yielded, MaterialFraction, PotentialEnergyTP};
-    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, body ? 7 : 6, obj, r));
+    PetscPointFunc obj[8] = {KineticEnergyTP, ShearRateTP, ShearRateSquaredTP, pw.tp_diss, pw.tp_yielded, MaterialFraction, AmbientDissipation, PotentialEnergyTP};
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, body ? 8 : 7, obj, r));
     area = prob->materialArea = r[5];
+    d->dissipation_ambient = r[6];
+    r[6]                   = r[7];
   } else {
+    d->dissipation_ambient = 0.0;
     PetscPointFunc obj[7] = {KineticEnergy, ShearRate, ShearRateSquared, pw.diss_yield, pw.yielded, NULL, PotentialEnergy};
     if (body) {
       obj[5] = PotentialEnergy;
@@ -183,6 +209,8 @@ PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Ve
   d->yielded_fraction = r[4] / area;
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
   PetscCall(MaxShearRate(prob, &d->max_shear_rate));
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(WallDissipation(prob, &d->dissipation_wall));
   d->flow_rate = 0.0;
   if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
     PetscPointFunc obj[1] = {OutOfPlaneVelocity};
@@ -190,8 +218,27 @@ PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Ve
     PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 1, obj, &d->flow_rate));
   } else if (prob->flowRateLabel[0]) {
     PetscCall(SlumpProblemFillLocal(prob, t, X));
-    PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, prob->flowRateLabel, -1, &d->flow_rate, NULL));
+    PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, prob->flowRateLabel, -1, NULL, &d->flow_rate, NULL));
   }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemComputeDissipation(SlumpProblem prob, PetscReal t, Vec X, PetscReal rate[3])
+{
+  SlumpRheologyPointwise pw;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  rate[0] = rate[1] = rate[2] = 0.0;
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) PetscFunctionReturn(0);
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  if (prob->twoPhase) {
+    PetscPointFunc obj[2] = {pw.tp_diss, AmbientDissipation};
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 2, obj, rate));
+  } else {
+    PetscPointFunc obj[1] = {pw.diss_yield};
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 1, obj, rate));
+  }
+  if (prob->wallFriction) PetscCall(WallDissipation(prob, &rate[2]));
   PetscFunctionReturn(0);
 }
 
@@ -234,7 +281,7 @@ PetscErrorCode SlumpProblemComputeBoundaryMean(SlumpProblem prob, PetscReal t, V
   PetscReal integral, length;
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemFillLocal(prob, t, X));
-  PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, label, comp, &integral, &length));
+  PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, label, comp, NULL, &integral, &length));
   *mean = length > 0 ? integral / length : 0.0;
   PetscFunctionReturn(0);
 }

@@ -375,6 +375,17 @@ void SlumpPwWallFrictionF0(PetscInt dim, PetscInt Nf, PetscInt NfAux, const Pets
   for (PetscInt c = 0; c < dim; ++c) f0[c] = w.m * w.L * w.ut[c];
 }
 
+/* The power the friction takes from the flow, f0 . u = m L |u_t|^2 >= 0 (the
+   wall's share of the dissipation; PetscBdPointFunc). */
+void SlumpPwWallFrictionPower(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar f[])
+{
+  WallState w;
+  PetscReal s2 = 0.0;
+  WallEvaluate(dim, Nf, uOff, u, n, constants, &w);
+  for (PetscInt c = 0; c < dim; ++c) s2 += w.ut[c] * w.ut[c];
+  f[0] = w.m * w.L * s2;
+}
+
 void SlumpPwWallFrictionG0uu(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, PetscReal u_tShift, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar g0[])
 {
   WallState w;

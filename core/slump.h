@@ -278,6 +278,8 @@ typedef struct {
   PetscReal yielded_fraction;   /* |{||tau|| > tau_y}| / |Omega| (1 if no yield stress) */
   PetscReal flow_rate;          /* int u . n over the flow-rate boundary, if any; anti-plane: int w */
   PetscReal potential_energy;   /* -int rho g . x, the body force's potential (0 without body force) */
+  PetscReal dissipation_ambient; /* two-phase: int (1 - m) eta_ambient ||gdot||^2, the ambient fluid's share (0 in one phase) */
+  PetscReal dissipation_wall;   /* int over the friction walls of the traction's power (0 without wall friction) */
 } SlumpDiagnostics;
 
 /* Two-phase (SlumpProblemSetTwoPhase): every quantity is the material's,
@@ -297,6 +299,11 @@ PETSC_EXTERN const char *const SlumpDiagnosticNames[];
    integrals, one projection if the maximum is asked for (collective). */
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnosticList(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, const SlumpDiagnosticKind kinds[], PetscReal values[]);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d);
+/* The rate at which the flow dissipates energy, in its three parts:
+   rate[0] the material's (the diagnostics' dissipation), rate[1] the
+   ambient fluid's, rate[2] the friction walls' (collective). Their sum is
+   what the kinetic and potential energy lose, up to the discretisation. */
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeDissipation(SlumpProblem prob, PetscReal t, Vec X, PetscReal rate[3]);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean);
 /* potential energy of the material, -int m rho g.x (0 without gravity or
    outside the plane formulation): the potential_energy of the diagnostics */

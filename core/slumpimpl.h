@@ -86,7 +86,10 @@ PETSC_INTERN PetscErrorCode SlumpAssemblyDestroy(SlumpAssembly *);
 PETSC_INTERN PetscErrorCode SlumpAssembleResidual(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, Vec locF);
 PETSC_INTERN PetscErrorCode SlumpAssembleJacobian(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat J);
 PETSC_INTERN PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscPointJac g[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4], Mat J);
-PETSC_INTERN PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem, Vec locX, const char label[], PetscInt comp, PetscReal *integral, PetscReal *length);
+/* int over the faces labelled `label` of u . n (comp < 0), u_comp, or, if
+   func is given, of func (every field's values, no gradients, at t = 0);
+   length: the faces' total length */
+PETSC_INTERN PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem, Vec locX, const char label[], PetscInt comp, PetscBdPointFunc func, PetscReal *integral, PetscReal *length);
 PETSC_INTERN PetscErrorCode SlumpAssembleIntegrals(SlumpProblem, PetscReal t, Vec locX, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Fill prob->locX with X and the boundary values at t. */
 PETSC_INTERN PetscErrorCode SlumpProblemFillLocal(SlumpProblem, PetscReal t, Vec X);
@@ -102,6 +105,7 @@ PETSC_INTERN PetscPointJac  SlumpPwSelectG0Phi(PetscInt effects, PetscInt form);
 PETSC_INTERN PetscPointJac  SlumpPwSelectG1Phi(PetscInt effects, PetscInt form);
 PETSC_INTERN PetscPointFunc SlumpPwSelectAntiPlaneF0(PetscInt effects);
 PETSC_INTERN PetscPointJac  SlumpPwSelectAntiPlaneG0(PetscInt effects);
+PETSC_INTERN void           SlumpPwWallFrictionPower(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);
 PETSC_INTERN void           SlumpPwWallFrictionF0(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);
 PETSC_INTERN void           SlumpPwWallFrictionG0uu(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);
 PETSC_INTERN void           SlumpPwWallFrictionG0up(PetscInt, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[], const PetscScalar[], PetscReal, PetscReal, const PetscReal[], const PetscReal[], PetscInt, const PetscScalar[], PetscScalar[]);
