@@ -100,16 +100,11 @@ static PetscErrorCode StepMonitor(SlumpIntegrator ti, const SlumpStepRecord *s, 
   r->newton_since += s->newton_its;
   r->lin_since += s->lin_its;
   {
-    SlumpDiagnosticKind ke = SLUMP_DIAG_KINETIC_ENERGY;
-    PetscReal           e;
+    PetscReal e, rate[3];
     /* collective: every rank computes, rank 0 writes */
-    PetscCall(SlumpProblemComputeDiagnosticList(r->prob, s->t, s->X, 1, &ke, &e));
-    if (r->steps) fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d,%.12e\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails, (double)e);
-  }
-  {
-    PetscReal rate[3];
-    PetscCall(SlumpProblemComputeDissipation(r->prob, s->t, s->X, rate));
+    PetscCall(SlumpProblemComputeEnergyRates(r->prob, s->t, s->X, &e, rate));
     RecordDissipation(r, s->t, rate[0] + rate[1] + rate[2]);
+    if (r->steps) fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d,%.12e\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails, (double)e);
   }
   PetscFunctionReturn(0);
 }

@@ -223,21 +223,29 @@ PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Ve
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SlumpProblemComputeDissipation(SlumpProblem prob, PetscReal t, Vec X, PetscReal rate[3])
+PetscErrorCode SlumpProblemComputeEnergyRates(SlumpProblem prob, PetscReal t, Vec X, PetscReal *kinetic, PetscReal rate[3])
 {
   SlumpRheologyPointwise pw;
+  PetscReal              r[3] = {0.0, 0.0, 0.0};
   PetscFunctionBeginUser;
   PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
   rate[0] = rate[1] = rate[2] = 0.0;
-  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) PetscFunctionReturn(0);
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) { /* a prescribed velocity: nothing dissipates */
+    const SlumpDiagnosticKind ke = SLUMP_DIAG_KINETIC_ENERGY;
+    PetscCall(SlumpProblemComputeDiagnosticList(prob, t, X, 1, &ke, kinetic));
+    PetscFunctionReturn(0);
+  }
   PetscCall(SlumpProblemFillLocal(prob, t, X));
   if (prob->twoPhase) {
-    PetscPointFunc obj[2] = {pw.tp_diss, AmbientDissipation};
-    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 2, obj, rate));
+    PetscPointFunc obj[3] = {KineticEnergyTP, pw.tp_diss, AmbientDissipation};
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 3, obj, r));
   } else {
-    PetscPointFunc obj[1] = {pw.diss_yield};
-    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 1, obj, rate));
+    PetscPointFunc obj[2] = {KineticEnergy, pw.diss_yield};
+    PetscCall(SlumpAssembleIntegrals(prob, t, prob->locX, 2, obj, r));
   }
+  *kinetic = r[0];
+  rate[0]  = r[1];
+  rate[1]  = r[2];
   if (prob->wallFriction) PetscCall(WallDissipation(prob, &rate[2]));
   PetscFunctionReturn(0);
 }

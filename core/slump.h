@@ -299,11 +299,12 @@ PETSC_EXTERN const char *const SlumpDiagnosticNames[];
    integrals, one projection if the maximum is asked for (collective). */
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnosticList(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, const SlumpDiagnosticKind kinds[], PetscReal values[]);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Vec X, SlumpDiagnostics *d);
-/* The rate at which the flow dissipates energy, in its three parts:
-   rate[0] the material's (the diagnostics' dissipation), rate[1] the
-   ambient fluid's, rate[2] the friction walls' (collective). Their sum is
-   what the kinetic and potential energy lose, up to the discretisation. */
-PETSC_EXTERN PetscErrorCode SlumpProblemComputeDissipation(SlumpProblem prob, PetscReal t, Vec X, PetscReal rate[3]);
+/* In one quadrature pass, the kinetic energy (the diagnostics') and the
+   rate at which the flow dissipates energy, in its three parts: rate[0] the
+   material's (the diagnostics' dissipation), rate[1] the ambient fluid's,
+   rate[2] the friction walls' (collective). The rates' sum is what the
+   kinetic and potential energy lose, up to the discretisation. */
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeEnergyRates(SlumpProblem prob, PetscReal t, Vec X, PetscReal *kinetic, PetscReal rate[3]);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeMeanShearRate(SlumpProblem prob, PetscReal t, Vec X, PetscReal *mean);
 /* potential energy of the material, -int m rho g.x (0 without gravity or
    outside the plane formulation): the potential_energy of the diagnostics */
