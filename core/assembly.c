@@ -428,8 +428,10 @@ PetscErrorCode SlumpAssembleIntegrals(SlumpProblem prob, PetscReal t, Vec locX, 
 }
 
 /* Over the faces of `label`: comp < 0: the flux int u . n (outward normal);
-   comp >= 0: int u_comp. Also returns the length. 3-point Gauss on each
-   edge, the velocity evaluated in the face's cell (collective). */
+   comp >= 0: int u_comp; func given: int func, a PetscBdPointFunc handed
+   every field's values (no gradients, t = 0) and the kernels' constants.
+   Also returns the length. 3-point Gauss on each edge, the fields
+   evaluated in the face's cell (collective). */
 PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const char labelname[], PetscInt comp, PetscBdPointFunc func, PetscReal *integral, PetscReal *length)
 {
   SlumpAssembly      a = prob->assembly;

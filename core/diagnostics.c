@@ -77,7 +77,7 @@ static PetscErrorCode WallDissipation(SlumpProblem prob, PetscReal *power)
 {
   PetscFunctionBeginUser;
   *power = 0.0;
-  for (PetscInt b = 0; b < prob->nbc; ++b) {
+  for (PetscInt b = 0; b < prob->nbc && prob->wallFriction; ++b) {
     PetscReal p;
     if (prob->bc[b].kind != SLUMP_BC_FRICTION) continue;
     PetscCall(SlumpAssembleBoundaryIntegral(prob, prob->locX, prob->bc[b].label, 0, SlumpPwWallFrictionPower, &p, NULL));
@@ -209,8 +209,7 @@ PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Ve
   d->yielded_fraction = r[4] / area;
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
   PetscCall(MaxShearRate(prob, &d->max_shear_rate));
-  PetscCall(SlumpProblemFillLocal(prob, t, X));
-  PetscCall(WallDissipation(prob, &d->dissipation_wall));
+  PetscCall(WallDissipation(prob, &d->dissipation_wall)); /* prob->locX: filled with diagX */
   d->flow_rate = 0.0;
   if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
     PetscPointFunc obj[1] = {OutOfPlaneVelocity};
