@@ -325,6 +325,9 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
   const PetscScalar *xa, *ta = NULL, *la = NULL;
   const PetscInt     NfA = prob->lagSet ? a->Nf : 0;
   const PetscInt    *aO = NfA ? a->uOff : NULL, *aOx = NfA ? a->uOff_x : NULL;
+  /* stress-velocity Newton: the plastic stress at each quadrature point goes
+     to the kernels as a_t (SlumpRheologyPointwise) */
+  const PetscScalar *S = (prob->dualOn && prob->dualInSolve) ? prob->dual : NULL;
   PetscCall(VecGetArrayRead(locX, &xa));
   if (locXdot) PetscCall(VecGetArrayRead(locXdot, &ta));
   if (NfA) PetscCall(VecGetArrayRead(prob->locLag, &la));
@@ -346,7 +349,7 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
             if (has[k]) {
               const PetscInt n = NcI * NcJ * (k == 0 ? 1 : (k == 3 ? dim * dim : dim));
               PetscCall(PetscArrayzero(gg[k], n));
-              g[f][h][k](dim, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, NfA ? &cd->ul[q * 8] : NULL, NULL, NfA ? &cd->ulx[q * 24] : NULL, t, shift, &cd->x[q * 3], nc, constants, gg[k]);
+              g[f][h][k](dim, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, NfA ? &cd->ul[q * 8] : NULL, S ? &S[(c * a->Nq + q) * prob->dualNs] : NULL, NfA ? &cd->ulx[q * 24] : NULL, t, shift, &cd->x[q * 3], nc, constants, gg[k]);
             }
           }
           if (!has[0] && !has[1] && !has[2] && !has[3]) continue;
@@ -387,6 +390,44 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
   PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(SLUMP_Jacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
+/* The plastic stress S at every (cell, quadrature point): consistent with
+   locX (locdX NULL), or updated from the linearisation point locX with the
+   Newton correction locdX (zero on constrained dofs). */
+PetscErrorCode SlumpAssembleDual(SlumpProblem prob, PetscReal t, Vec locX, Vec locdX, PetscScalar *S)
+{
+  SlumpAssembly          a = prob->assembly;
+  PetscDS                ds;
+  const PetscScalar     *constants, *xa, *da = NULL;
+  PetscInt               nc;
+  CellData              *cd;
+  SlumpRheologyPointwise pw;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  if (!pw.dual) PetscFunctionReturn(0);
+  PetscCall(DMGetDS(prob->dm, &ds));
+  PetscCall(PetscDSGetConstants(ds, &nc, &constants));
+  PetscCall(PetscMalloc1(1, &cd));
+  PetscCall(VecGetArrayRead(locX, &xa));
+  if (locdX) PetscCall(VecGetArrayRead(locdX, &da));
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    EvaluateCell(a, c, xa, NULL, da, cd); /* the correction's values and gradients in ul, ulx */
+    for (PetscInt q = 0; q < a->Nq; ++q) pw.dual(a->dim, a->Nf, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ux[q * 24], da ? &cd->ul[q * 8] : NULL, da ? &cd->ulx[q * 24] : NULL, &cd->x[q * 3], constants, &S[(c * a->Nq + q) * prob->dualNs]);
+  }
+  if (locdX) PetscCall(VecRestoreArrayRead(locdX, &da));
+  PetscCall(VecRestoreArrayRead(locX, &xa));
+  PetscCall(PetscFree(cd));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpAssemblyGetSizes(SlumpProblem prob, PetscInt *ncell, PetscInt *nq, PetscInt *dim)
+{
+  PetscFunctionBeginUser;
+  *ncell = prob->assembly->ncell;
+  *nq    = prob->assembly->Nq;
+  *dim   = prob->assembly->dim;
   PetscFunctionReturn(0);
 }
 

@@ -35,6 +35,9 @@ PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
   PetscCall(VecDestroy(&p->locF));
   PetscCall(VecDestroy(&p->diagX));
   PetscCall(SlumpAssemblyDestroy(&p->assembly));
+  PetscCall(PetscFree2(p->dual, p->dualSave));
+  PetscCall(VecDestroy(&p->dualLin));
+  PetscCall(VecDestroy(&p->locDual));
   PetscCall(PetscFree2(p->bcIdx, p->bcVal));
   PetscCall(DMDestroy(&p->dmDiag));
   PetscCall(DMDestroy(&p->dm));

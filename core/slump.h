@@ -267,6 +267,31 @@ PETSC_EXTERN PetscErrorCode SlumpProblemJacobian(SlumpProblem prob, PetscReal t,
 PETSC_EXTERN PetscErrorCode SlumpProblemInitJacobian(SlumpProblem prob, PetscReal t, Vec X, Mat J);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetCounters(SlumpProblem prob, PetscInt *nres, PetscInt *njac);
 
+/* Stress-velocity Newton (Rudi, Shih & Stadler 2020; Chan, Golub & Mulet
+   1999 for TV): the plastic stress S of the rheology's yield term is kept
+   as an independent variable at every quadrature point while the Newton
+   systems stay velocity-pressure ones (slumprheology.h, SlumpPlasticKernel).
+   A nonlinear solve brackets its iterations with Begin/End:
+     Begin: S = the value carried from the last converged solve (the first
+            time, or after Reset: consistent with X);
+     Linearise(X): before each Jacobian at the iterate X: S is updated with
+            the step X - X_previous from the linearised plastic law, then
+            projected into ||S|| <= tau_y; the Jacobian then uses S;
+     End(X, converged): the last update, and S is kept for the next solve
+            if converged.
+   Outside a Begin/End bracket, and for a model without a plastic part, the
+   Jacobian is the primal one. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetStressVelocity(SlumpProblem prob, PetscBool on);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetStressVelocity(SlumpProblem prob, PetscBool *on);
+PETSC_EXTERN PetscErrorCode SlumpProblemDualBegin(SlumpProblem prob, PetscReal t, Vec X);
+PETSC_EXTERN PetscErrorCode SlumpProblemDualLinearise(SlumpProblem prob, PetscReal t, Vec X);
+PETSC_EXTERN PetscErrorCode SlumpProblemDualEnd(SlumpProblem prob, PetscReal t, Vec X, PetscBool converged);
+/* Forget the carried S (the state was changed between steps). */
+PETSC_EXTERN PetscErrorCode SlumpProblemDualReset(SlumpProblem prob);
+/* The S array: n quadrature points (local cells x points per cell), ns
+   values each (read only; tests). */
+PETSC_EXTERN PetscErrorCode SlumpProblemDualGetArray(SlumpProblem prob, PetscInt *n, PetscInt *ns, const PetscScalar **S);
+
 /* ----------------------------------------------------------- diagnostics */
 typedef struct {
   PetscReal t;

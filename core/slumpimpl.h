@@ -74,6 +74,13 @@ struct _n_SlumpProblem {
   PetscBool     wallFriction;
   SlumpWallLaw  wallLaw;
   PetscReal     wallCoeff, wallReg;
+  /* stress-velocity Newton (SlumpProblemSetStressVelocity): the plastic
+     stress S at every (local cell, quadrature point), dualNs values each;
+     used by the Jacobian between SlumpProblemDualBegin and ...End */
+  PetscBool     dualOn, dualInSolve, dualSaved, dualLinSet;
+  PetscInt      dualNs, dualNq;
+  PetscScalar  *dual, *dualSave;
+  Vec           dualLin, locDual;
   /* pressure reference point (closed boxes) */
   PetscBool     pinSet;
   PetscReal     pinX[3];
@@ -90,6 +97,10 @@ PETSC_INTERN PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem, PetscReal t,
    func is given, of func (every field's values, no gradients, at t = 0);
    length: the faces' total length */
 PETSC_INTERN PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem, Vec locX, const char label[], PetscInt comp, PetscBdPointFunc func, PetscReal *integral, PetscReal *length);
+/* S at every quadrature point: initialised from locX (locdX NULL) or
+   updated with the correction locdX (SlumpDualFn of the rheology) */
+PETSC_INTERN PetscErrorCode SlumpAssembleDual(SlumpProblem, PetscReal t, Vec locX, Vec locdX, PetscScalar *S);
+PETSC_INTERN PetscErrorCode SlumpAssemblyGetSizes(SlumpProblem, PetscInt *ncell, PetscInt *nq, PetscInt *dim);
 PETSC_INTERN PetscErrorCode SlumpAssembleIntegrals(SlumpProblem, PetscReal t, Vec locX, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Fill prob->locX with X and the boundary values at t. */
 PETSC_INTERN PetscErrorCode SlumpProblemFillLocal(SlumpProblem, PetscReal t, Vec X);

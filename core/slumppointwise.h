@@ -56,17 +56,85 @@ static inline void SlumpPwF1AntiPlane(PetscInt dim, const PetscScalar w_x[], con
   for (PetscInt d = 0; d < dim; ++d) f1[d] = eta * w_x[d];
 }
 
-static inline void SlumpPwG3AntiPlane(PetscInt dim, const PetscScalar w_x[], const PetscReal x[], const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g3[])
+/* Stress-velocity Newton: the plastic part of the tangent's rank-one term.
+   The primal tangent carries m tau_y R'(g)/g gdot (x) gdot (m: the material
+   fraction); with the plastic stress S held as its own variable it becomes
+   m R'/(R g) sym(S (x) gdot). Returns rp, the primal coefficient to remove,
+   and cS, the coefficient of sym(S (x) gdot). Both 0 without S or a plastic
+   kernel, or at rest. */
+static inline void SlumpPwPlasticTangent(SlumpPlasticKernel pk, const PetscScalar *S, const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal m, PetscReal *rp, PetscReal *cS)
 {
-  PetscReal s = 0.0, g, eta, de_dg, de_dp, ty;
+  PetscReal ty, R, dR;
+  *rp = *cS = 0.0;
+  if (!pk || !S || !(g > SLUMP_GDOT_TINY)) return;
+  pk(prm, g, p, x, &ty, &R, &dR);
+  *rp = m * ty * dR / g;
+  *cS = R > 0 ? m * dR / (R * g) : 0.0;
+}
+
+static inline void SlumpPwG3AntiPlane(PetscInt dim, const PetscScalar w_x[], const PetscReal x[], const PetscScalar prm[], PetscInt jacmode, SlumpViscosityKernel k, SlumpPlasticKernel pk, const PetscScalar *S, PetscScalar g3[])
+{
+  PetscReal s = 0.0, g, eta, de_dg, de_dp, ty, rp, cS;
   for (PetscInt d = 0; d < dim * dim; ++d) g3[d] = 0.0;
   if (jacmode == 1) return;
   for (PetscInt d = 0; d < dim; ++d) s += PetscRealPart(w_x[d] * w_x[d]);
   g = PetscSqrtReal(s);
   k(prm, g, 0.0, x, &eta, &de_dg, &de_dp, &ty);
-  const PetscReal r = g > SLUMP_GDOT_TINY ? de_dg / g : 0.0;
+  SlumpPwPlasticTangent(pk, S, prm, g, 0.0, x, 1.0, &rp, &cS);
+  const PetscReal r = g > SLUMP_GDOT_TINY ? de_dg / g - rp : 0.0;
   for (PetscInt d = 0; d < dim; ++d)
-    for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = r * w_x[d] * w_x[e] + (d == e ? eta : 0.0);
+    for (PetscInt e = 0; e < dim; ++e) g3[d * dim + e] = r * w_x[d] * w_x[e] + (d == e ? eta : 0.0) + (cS != 0.0 ? 0.5 * cS * (S[d] * w_x[e] + w_x[d] * S[e]) : 0.0);
+}
+
+/* The dual variable's update at one quadrature point (stress-velocity
+   Newton). The plastic law multiplied through, S / R(g) = tau_y gdot, is
+   linearised in (gdot, S) at the linearisation point; after the Newton
+   correction dgdot it gives
+     S <- tau_y R(g) (gdot + dgdot) + R'/(R g) S (1/2 gdot : dgdot)
+   (the anti-plane form with grad w and grad w . grad dw), then S is scaled
+   back into ||S|| <= tau_y, tau_y taken at the corrected pressure. Without
+   a correction (dgrad NULL) S = tau_y R(g) gdot, the consistent value.
+   grad: u_x (plane, dim x dim) or grad w (anti-plane, dim). */
+static inline void SlumpPwDualUpdate(PetscInt dim, PetscBool antiplane, const PetscScalar grad[], PetscReal p, const PetscScalar dgrad[], PetscReal dp, const PetscReal x[], const PetscScalar prm[], SlumpPlasticKernel pk, PetscScalar S[])
+{
+  PetscScalar gd[9], dgd[9];
+  PetscReal   g, ty, R, dR, ty1, R1, dR1, c = 0.0, gdg = 0.0, nS = 0.0;
+  const PetscInt n = antiplane ? dim : dim * dim;
+  const PetscReal half = antiplane ? 1.0 : 0.5;
+  if (!pk) {
+    for (PetscInt i = 0; i < n; ++i) S[i] = 0.0;
+    return;
+  }
+  if (antiplane) {
+    PetscReal s = 0.0;
+    for (PetscInt d = 0; d < dim; ++d) {
+      gd[d]  = grad[d];
+      dgd[d] = dgrad ? dgrad[d] : 0.0;
+      s += PetscRealPart(gd[d] * gd[d]);
+    }
+    g = PetscSqrtReal(s);
+  } else {
+    g = SlumpPwStrainRate(dim, grad, gd);
+    if (dgrad) (void)SlumpPwStrainRate(dim, dgrad, dgd);
+    else
+      for (PetscInt i = 0; i < n; ++i) dgd[i] = 0.0;
+  }
+  pk(prm, g, p, x, &ty, &R, &dR);
+  if (dgrad) {
+    pk(prm, g, p + dp, x, &ty1, &R1, &dR1);
+    if (g > SLUMP_GDOT_TINY && R > 0) c = dR / (R * g);
+    for (PetscInt i = 0; i < n; ++i) gdg += half * PetscRealPart(gd[i] * dgd[i]);
+    for (PetscInt i = 0; i < n; ++i) S[i] = ty1 * R * (gd[i] + dgd[i]) + c * S[i] * gdg;
+  } else {
+    ty1 = ty;
+    for (PetscInt i = 0; i < n; ++i) S[i] = ty * R * gd[i];
+  }
+  for (PetscInt i = 0; i < n; ++i) nS += half * PetscRealPart(S[i] * S[i]);
+  nS = PetscSqrtReal(nS);
+  if (nS > ty1) {
+    const PetscReal f = ty1 > 0 ? ty1 / nS : 0.0;
+    for (PetscInt i = 0; i < n; ++i) S[i] *= f;
+  }
 }
 
 /* Two-phase mixing: the material fraction m = 1 - H(d - shift) of the
@@ -143,23 +211,27 @@ static inline void SlumpPwF1(PetscInt dim, const PetscScalar u_x[], PetscScalar 
 }
 
 /* d f1[c,d] / d u_x[e,f] = eta (delta_ce delta_df + delta_de delta_cf) + eta' gd_cd gd_ef / ||gdot||.
-   jacmode 1 (consistent initialisation) drops the viscous block. */
-static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscReal m, PetscReal eta_a, PetscInt jacmode, SlumpViscosityKernel k, PetscScalar g3[])
+   jacmode 1 (consistent initialisation) drops the viscous block. With the
+   plastic stress S (stress-velocity Newton) the plastic share of the
+   rank-one term is m R'/(R g) sym(S (x) gdot) instead (SlumpPwPlasticTangent). */
+static inline void SlumpPwG3(PetscInt dim, const PetscScalar u_x[], PetscScalar p, const PetscReal x[], const PetscScalar prm[], PetscReal m, PetscReal eta_a, PetscInt jacmode, SlumpViscosityKernel k, SlumpPlasticKernel pk, const PetscScalar *S, PetscScalar g3[])
 {
   PetscScalar gd[9];
-  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty, em;
+  PetscReal   g = SlumpPwStrainRate(dim, u_x, gd), eta, de_dg, de_dp, ty, em, rp, cS;
   const PetscInt n = dim * dim;
   if (jacmode == 1) {
     for (PetscInt i = 0; i < n * n; ++i) g3[i] = 0.0;
     return;
   }
   SlumpPwViscosity(k, prm, g, PetscRealPart(p), x, m, eta_a, &eta, &de_dg, &de_dp, &ty, &em);
-  const PetscReal r = g > SLUMP_GDOT_TINY ? de_dg / g : 0.0;
+  SlumpPwPlasticTangent(pk, S, prm, g, PetscRealPart(p), x, m, &rp, &cS);
+  const PetscReal r = g > SLUMP_GDOT_TINY ? de_dg / g - rp : 0.0;
   for (PetscInt c = 0; c < dim; ++c)
     for (PetscInt d = 0; d < dim; ++d)
       for (PetscInt e = 0; e < dim; ++e)
         for (PetscInt f = 0; f < dim; ++f) {
           PetscScalar v = r * gd[c * dim + d] * gd[e * dim + f];
+          if (cS != 0.0) v += 0.5 * cS * (S[c * dim + d] * gd[e * dim + f] + gd[c * dim + d] * S[e * dim + f]);
           if (c == e && d == f) v += eta;
           if (d == e && c == f) v += eta;
           g3[((c * dim + e) * dim + d) * dim + f] = v;
@@ -210,14 +282,14 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
   SlumpPwViscousFraction(u[uOff[Nf - 1]], constants, &m_, &dm_); \
   const PetscReal ea_ = PetscRealPart(constants[SLUMP_C_MIX_ETA]); \
   (void)ea_
-#define SLUMP_RHEOLOGY_DEFINE_POINTWISE(NAME, KERNEL) \
+#define SLUMP_RHEOLOGY_DEFINE_POINTWISE(NAME, KERNEL, PLASTIC) \
   static void NAME##_f1_u(SLUMP_PW_ARGS, PetscScalar f1[]) \
   { \
     SlumpPwF1(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], 1.0, 0.0, KERNEL, f1); \
   } \
   static void NAME##_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
   { \
-    SlumpPwG3(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], 1.0, 0.0, SLUMP_PW_JACMODE, KERNEL, g3); \
+    SlumpPwG3(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], 1.0, 0.0, SLUMP_PW_JACMODE, KERNEL, PLASTIC, a_t, g3); \
   } \
   static void NAME##_g2_up(SLUMP_PWJ_ARGS, PetscScalar g2[]) \
   { \
@@ -229,7 +301,7 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
   } \
   static void NAME##_ap_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
   { \
-    SlumpPwG3AntiPlane(dim, u_x, x, &constants[SLUMP_C_RHEO], SLUMP_PW_JACMODE, KERNEL, g3); \
+    SlumpPwG3AntiPlane(dim, u_x, x, &constants[SLUMP_C_RHEO], SLUMP_PW_JACMODE, KERNEL, PLASTIC, a_t, g3); \
   } \
   static void NAME##_eta(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
@@ -262,7 +334,7 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
   static void NAME##_tp_g3_uu(SLUMP_PWJ_ARGS, PetscScalar g3[]) \
   { \
     SLUMP_PW_MIX; \
-    SlumpPwG3(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], m_, ea_, SLUMP_PW_JACMODE, KERNEL, g3); \
+    SlumpPwG3(dim, u_x, u[uOff[1]], x, &constants[SLUMP_C_RHEO], m_, ea_, SLUMP_PW_JACMODE, KERNEL, PLASTIC, a_t, g3); \
   } \
   static void NAME##_tp_g2_up(SLUMP_PWJ_ARGS, PetscScalar g2[]) \
   { \
@@ -295,5 +367,11 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
     SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &m_, &dm_); /* an area share, like the other averages */ \
     f[0] = (eta * g > ty) ? m_ : 0.0; \
   } \
+  static void NAME##_dual(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_x[], const PetscScalar du[], const PetscScalar du_x[], const PetscReal x[], const PetscScalar constants[], PetscScalar S[]) \
+  { \
+    const PetscBool ap_ = (uOff[1] - uOff[0] == 1) ? PETSC_TRUE : PETSC_FALSE; \
+    const PetscReal p_  = (!ap_ && Nf > 1) ? PetscRealPart(u[uOff[1]]) : 0.0, dp_ = (!ap_ && Nf > 1 && du) ? PetscRealPart(du[uOff[1]]) : 0.0; \
+    SlumpPwDualUpdate(dim, ap_, u_x, p_, du_x, dp_, x, &constants[SLUMP_C_RHEO], PLASTIC, S); \
+  } \
   static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded, NAME##_ap_f1_u, NAME##_ap_g3_uu, \
-                                                          NAME##_tp_f1_u, NAME##_tp_g2_up, NAME##_tp_g3_uu, NAME##_tp_g2_uphi, NAME##_tp_eta, NAME##_tp_dissipation, NAME##_tp_yielded};
+                                                          NAME##_tp_f1_u, NAME##_tp_g2_up, NAME##_tp_g3_uu, NAME##_tp_g2_uphi, NAME##_tp_eta, NAME##_tp_dissipation, NAME##_tp_yielded, NAME##_dual};

@@ -50,9 +50,19 @@ static inline void SimpleKernel(const PetscScalar prm[], PetscReal g, PetscReal 
   *ty    = tau0;
 }
 
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(Papanastasiou, PapanastasiouKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(Bercovier, BercovierKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(BinghamSimple, SimpleKernel)
+/* Plastic parts (slumprheology.h): tau_y = tau0, R the regularised 1/g. */
+#define BINGHAM_PLASTIC(NAME, KIND) \
+  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR) \
+  { \
+    *ty = PetscRealPart(prm[1]); \
+    SlumpYieldShape(KIND, PetscRealPart(prm[2]), g, R, dR); \
+  }
+BINGHAM_PLASTIC(PapanastasiouPlastic, SLUMP_REG_PAPANASTASIOU)
+BINGHAM_PLASTIC(BercovierPlastic, SLUMP_REG_BERCOVIER)
+BINGHAM_PLASTIC(SimplePlastic, SLUMP_REG_SIMPLE)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(Papanastasiou, PapanastasiouKernel, PapanastasiouPlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(Bercovier, BercovierKernel, BercovierPlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(BinghamSimple, SimpleKernel, SimplePlastic)
 
 static PetscErrorCode BinghamCommon(SlumpRheology rheo)
 {
@@ -70,6 +80,7 @@ PetscErrorCode SlumpRheologyCreate_Papanastasiou(SlumpRheology rheo)
   rheo->ireg               = 2;
   rheo->reg_larger_stiffer = PETSC_TRUE;
   rheo->kernel             = PapanastasiouKernel;
+  rheo->plastic            = PapanastasiouPlastic;
   rheo->pointwise          = Papanastasiou_pointwise;
   PetscFunctionReturn(0);
 }
@@ -82,6 +93,7 @@ PetscErrorCode SlumpRheologyCreate_Bercovier(SlumpRheology rheo)
   rheo->ireg               = 2;
   rheo->reg_larger_stiffer = PETSC_FALSE;
   rheo->kernel             = BercovierKernel;
+  rheo->plastic            = BercovierPlastic;
   rheo->pointwise          = Bercovier_pointwise;
   PetscFunctionReturn(0);
 }
@@ -94,6 +106,7 @@ PetscErrorCode SlumpRheologyCreate_BinghamSimple(SlumpRheology rheo)
   rheo->ireg               = 2;
   rheo->reg_larger_stiffer = PETSC_FALSE;
   rheo->kernel             = SimpleKernel;
+  rheo->plastic            = SimplePlastic;
   rheo->pointwise          = BinghamSimple_pointwise;
   PetscFunctionReturn(0);
 }

@@ -43,13 +43,17 @@ static inline PetscReal LithoDepth(PetscReal d, PetscReal w)
 
 /* prm is constants + SLUMP_C_RHEO (the kernels' layout): when the problem
    carries a free-surface table, H is the current surface height h(x). */
+static inline PetscReal LithoYieldStress(const PetscScalar prm[], const PetscReal x[])
+{
+  const PetscReal mu = PetscRealPart(prm[1]), rho = PetscRealPart(prm[2]), grav = PetscRealPart(prm[3]);
+  PetscReal       H  = PetscRealPart(prm[4]);
+  if (x) (void)SlumpSurfaceHeight(prm - SLUMP_C_RHEO, x[0], &H);
+  return mu * rho * grav * LithoDepth(H - (x ? x[1] : 0.0), PetscRealPart(prm[SLUMP_C_MIX_EPS - SLUMP_C_RHEO]));
+}
 static inline void LithoKernel(SlumpRegKind kind, const PetscScalar prm[], PetscReal g, const PetscReal x[], PetscReal *eta, PetscReal *de_dg, PetscReal *de_dp, PetscReal *ty)
 {
-  const PetscReal etap = PetscRealPart(prm[0]), mu = PetscRealPart(prm[1]), rho = PetscRealPart(prm[2]), grav = PetscRealPart(prm[3]), r = PetscRealPart(prm[5]);
-  PetscReal       H = PetscRealPart(prm[4]), depth, tauy, R, dR;
-  if (x) (void)SlumpSurfaceHeight(prm - SLUMP_C_RHEO, x[0], &H);
-  depth = H - (x ? x[1] : 0.0);
-  tauy  = mu * rho * grav * LithoDepth(depth, PetscRealPart(prm[SLUMP_C_MIX_EPS - SLUMP_C_RHEO]));
+  const PetscReal etap = PetscRealPart(prm[0]), r = PetscRealPart(prm[5]), tauy = LithoYieldStress(prm, x);
+  PetscReal       R, dR;
   SlumpYieldShape(kind, r, g, &R, &dR);
   *eta   = etap + tauy * R;
   *de_dg = tauy * dR;
@@ -67,18 +71,40 @@ static inline void LithoKernel(SlumpRegKind kind, const PetscScalar prm[], Petsc
   { \
     LithoKernel(KIND, prm, g, x, eta, de_dg, de_dp, ty); \
   }
+/* Plastic parts (slumprheology.h): tau_y = mu P or the lithostatic
+   mu rho g depth, R the regularised 1/g. */
+#define DP_PLASTIC(NAME, KIND) \
+  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR) \
+  { \
+    PetscReal P, dP; \
+    SlumpPositivePressure(p, PetscRealPart(prm[3]), &P, &dP); \
+    *ty = PetscRealPart(prm[1]) * P; \
+    SlumpYieldShape(KIND, PetscRealPart(prm[2]), g, R, dR); \
+  }
+#define LITHO_PLASTIC(NAME, KIND) \
+  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR) \
+  { \
+    *ty = LithoYieldStress(prm, x); \
+    SlumpYieldShape(KIND, PetscRealPart(prm[5]), g, R, dR); \
+  }
+DP_PLASTIC(DPSimplePlastic, SLUMP_REG_SIMPLE)
+DP_PLASTIC(DPBercovierPlastic, SLUMP_REG_BERCOVIER)
+DP_PLASTIC(DPPapanastasiouPlastic, SLUMP_REG_PAPANASTASIOU)
+LITHO_PLASTIC(LithoSimplePlastic, SLUMP_REG_SIMPLE)
+LITHO_PLASTIC(LithoBercovierPlastic, SLUMP_REG_BERCOVIER)
+LITHO_PLASTIC(LithoPapanastasiouPlastic, SLUMP_REG_PAPANASTASIOU)
 DP_KERNEL(DPSimpleKernel, SLUMP_REG_SIMPLE)
 DP_KERNEL(DPBercovierKernel, SLUMP_REG_BERCOVIER)
 DP_KERNEL(DPPapanastasiouKernel, SLUMP_REG_PAPANASTASIOU)
 LITHO_KERNEL(LithoSimpleKernel, SLUMP_REG_SIMPLE)
 LITHO_KERNEL(LithoBercovierKernel, SLUMP_REG_BERCOVIER)
 LITHO_KERNEL(LithoPapanastasiouKernel, SLUMP_REG_PAPANASTASIOU)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPSimple, DPSimpleKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPBercovier, DPBercovierKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPPapanastasiou, DPPapanastasiouKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoSimple, LithoSimpleKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoBercovier, LithoBercovierKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoPapanastasiou, LithoPapanastasiouKernel)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPSimple, DPSimpleKernel, DPSimplePlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPBercovier, DPBercovierKernel, DPBercovierPlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(DPPapanastasiou, DPPapanastasiouKernel, DPPapanastasiouPlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoSimple, LithoSimpleKernel, LithoSimplePlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoBercovier, LithoBercovierKernel, LithoBercovierPlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(LithoPapanastasiou, LithoPapanastasiouKernel, LithoPapanastasiouPlastic)
 
 static PetscErrorCode DPCommon(SlumpRheology rheo, SlumpRegKind kind)
 {
@@ -117,22 +143,23 @@ static PetscErrorCode LithoCheck(SlumpRheology rheo)
   PetscFunctionReturn(0);
 }
 
-#define CREATE(NAME, COMMON, KIND, KERNEL, PW, CHECK) \
+#define CREATE(NAME, COMMON, KIND, KERNEL, PLASTIC, PW, CHECK) \
   static PetscErrorCode NAME(SlumpRheology rheo) \
   { \
     PetscFunctionBeginUser; \
     PetscCall(COMMON(rheo, KIND)); \
     rheo->kernel    = KERNEL; \
+    rheo->plastic   = PLASTIC; \
     rheo->pointwise = PW; \
     rheo->ops.check = CHECK; \
     PetscFunctionReturn(0); \
   }
-CREATE(CreateDPSimple, DPCommon, SLUMP_REG_SIMPLE, DPSimpleKernel, DPSimple_pointwise, DPCheck)
-CREATE(CreateDPBercovier, DPCommon, SLUMP_REG_BERCOVIER, DPBercovierKernel, DPBercovier_pointwise, DPCheck)
-CREATE(CreateDPPapanastasiou, DPCommon, SLUMP_REG_PAPANASTASIOU, DPPapanastasiouKernel, DPPapanastasiou_pointwise, DPCheck)
-CREATE(CreateLithoSimple, LithoCommon, SLUMP_REG_SIMPLE, LithoSimpleKernel, LithoSimple_pointwise, LithoCheck)
-CREATE(CreateLithoBercovier, LithoCommon, SLUMP_REG_BERCOVIER, LithoBercovierKernel, LithoBercovier_pointwise, LithoCheck)
-CREATE(CreateLithoPapanastasiou, LithoCommon, SLUMP_REG_PAPANASTASIOU, LithoPapanastasiouKernel, LithoPapanastasiou_pointwise, LithoCheck)
+CREATE(CreateDPSimple, DPCommon, SLUMP_REG_SIMPLE, DPSimpleKernel, DPSimplePlastic, DPSimple_pointwise, DPCheck)
+CREATE(CreateDPBercovier, DPCommon, SLUMP_REG_BERCOVIER, DPBercovierKernel, DPBercovierPlastic, DPBercovier_pointwise, DPCheck)
+CREATE(CreateDPPapanastasiou, DPCommon, SLUMP_REG_PAPANASTASIOU, DPPapanastasiouKernel, DPPapanastasiouPlastic, DPPapanastasiou_pointwise, DPCheck)
+CREATE(CreateLithoSimple, LithoCommon, SLUMP_REG_SIMPLE, LithoSimpleKernel, LithoSimplePlastic, LithoSimple_pointwise, LithoCheck)
+CREATE(CreateLithoBercovier, LithoCommon, SLUMP_REG_BERCOVIER, LithoBercovierKernel, LithoBercovierPlastic, LithoBercovier_pointwise, LithoCheck)
+CREATE(CreateLithoPapanastasiou, LithoCommon, SLUMP_REG_PAPANASTASIOU, LithoPapanastasiouKernel, LithoPapanastasiouPlastic, LithoPapanastasiou_pointwise, LithoCheck)
 
 PetscErrorCode SlumpRheologyRegister_DruckerPrager(void)
 {

@@ -28,9 +28,19 @@ static inline void HBKernel(SlumpRegKind kind, const PetscScalar prm[], PetscRea
 HB_KERNEL(HBSimpleKernel, SLUMP_REG_SIMPLE)
 HB_KERNEL(HBBercovierKernel, SLUMP_REG_BERCOVIER)
 HB_KERNEL(HBPapanastasiouKernel, SLUMP_REG_PAPANASTASIOU)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBSimple, HBSimpleKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBBercovier, HBBercovierKernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBPapanastasiou, HBPapanastasiouKernel)
+/* Plastic parts: tau_y = tau0 and the regularised 1/g of the yield term. */
+#define HB_PLASTIC(NAME, KIND) \
+  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR) \
+  { \
+    *ty = PetscRealPart(prm[2]); \
+    SlumpYieldShape(KIND, PetscRealPart(prm[3]), g, R, dR); \
+  }
+HB_PLASTIC(HBSimplePlastic, SLUMP_REG_SIMPLE)
+HB_PLASTIC(HBBercovierPlastic, SLUMP_REG_BERCOVIER)
+HB_PLASTIC(HBPapanastasiouPlastic, SLUMP_REG_PAPANASTASIOU)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBSimple, HBSimpleKernel, HBSimplePlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBBercovier, HBBercovierKernel, HBBercovierPlastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBPapanastasiou, HBPapanastasiouKernel, HBPapanastasiouPlastic)
 
 static PetscErrorCode HBCheck(SlumpRheology rheo)
 {
@@ -51,18 +61,19 @@ static PetscErrorCode HBCommon(SlumpRheology rheo, SlumpRegKind kind)
   PetscFunctionReturn(0);
 }
 
-#define HB_CREATE(NAME, KIND, KERNEL, PW) \
+#define HB_CREATE(NAME, KIND, KERNEL, PLASTIC, PW) \
   static PetscErrorCode NAME(SlumpRheology rheo) \
   { \
     PetscFunctionBeginUser; \
     PetscCall(HBCommon(rheo, KIND)); \
     rheo->kernel    = KERNEL; \
+    rheo->plastic   = PLASTIC; \
     rheo->pointwise = PW; \
     PetscFunctionReturn(0); \
   }
-HB_CREATE(CreateHBSimple, SLUMP_REG_SIMPLE, HBSimpleKernel, HBSimple_pointwise)
-HB_CREATE(CreateHBBercovier, SLUMP_REG_BERCOVIER, HBBercovierKernel, HBBercovier_pointwise)
-HB_CREATE(CreateHBPapanastasiou, SLUMP_REG_PAPANASTASIOU, HBPapanastasiouKernel, HBPapanastasiou_pointwise)
+HB_CREATE(CreateHBSimple, SLUMP_REG_SIMPLE, HBSimpleKernel, HBSimplePlastic, HBSimple_pointwise)
+HB_CREATE(CreateHBBercovier, SLUMP_REG_BERCOVIER, HBBercovierKernel, HBBercovierPlastic, HBBercovier_pointwise)
+HB_CREATE(CreateHBPapanastasiou, SLUMP_REG_PAPANASTASIOU, HBPapanastasiouKernel, HBPapanastasiouPlastic, HBPapanastasiou_pointwise)
 
 PetscErrorCode SlumpRheologyRegister_HerschelBulkley(void)
 {

@@ -64,11 +64,39 @@ static inline void ThesisKernel(const PetscScalar prm[], PetscReal g, PetscReal 
 CM_KERNEL(CM9Kernel, SLUMP_REG_SIMPLE)
 CM_KERNEL(CM10Kernel, SLUMP_REG_BERCOVIER)
 CM_KERNEL(CM11Kernel, SLUMP_REG_PAPANASTASIOU)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(CM9, CM9Kernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(CM10, CM10Kernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(CM11, CM11Kernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(CM12, CM12Kernel)
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(Thesis, ThesisKernel)
+/* Plastic parts (slumprheology.h): tau_y = mu_s P, R the static term's
+   regularised 1/g (eqs. 9-11: the regularisation's own; eq. 12 and the
+   thesis: 1/sqrt(g^2 + lr^2), lr = lambda_r or gdot_min). The rate-dependent
+   part dmu ... stays in the primal tangent. */
+static inline void CMPlastic(SlumpRegKind kind, const PetscScalar prm[], PetscReal g, PetscReal p, PetscReal *ty, PetscReal *R, PetscReal *dR)
+{
+  const PetscReal mus = PetscRealPart(prm[0]), lr = PetscRealPart(prm[4]), d = PetscRealPart(prm[5]);
+  PetscReal       P, dP;
+  SlumpPositivePressure(p, d, &P, &dP);
+  *ty = mus * P;
+  SlumpYieldShape(kind, kind == SLUMP_REG_PAPANASTASIOU ? 1.0 / lr : lr, g, R, dR);
+}
+#define CM_PLASTIC(NAME, KIND) \
+  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR) \
+  { \
+    CMPlastic(KIND, prm, g, p, ty, R, dR); \
+  }
+CM_PLASTIC(CM9Plastic, SLUMP_REG_SIMPLE)
+CM_PLASTIC(CM10Plastic, SLUMP_REG_BERCOVIER)
+CM_PLASTIC(CM11Plastic, SLUMP_REG_PAPANASTASIOU)
+CM_PLASTIC(CM12Plastic, SLUMP_REG_BERCOVIER)
+static inline void ThesisPlastic(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR)
+{
+  PetscReal P, dP;
+  SlumpPositivePressure(p, PetscRealPart(prm[7]), &P, &dP);
+  *ty = PetscRealPart(prm[0]) * P;
+  SlumpYieldShape(SLUMP_REG_BERCOVIER, PetscRealPart(prm[5]), g, R, dR);
+}
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(CM9, CM9Kernel, CM9Plastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(CM10, CM10Kernel, CM10Plastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(CM11, CM11Kernel, CM11Plastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(CM12, CM12Kernel, CM12Plastic)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(Thesis, ThesisKernel, ThesisPlastic)
 
 /* Chauchat & Medale's glass beads as defaults. */
 static PetscErrorCode Friction(SlumpRheology rheo)
@@ -92,19 +120,20 @@ static PetscErrorCode CMCommon(SlumpRheology rheo)
   PetscFunctionReturn(0);
 }
 
-#define CM_CREATE(NAME, KERNEL, PW) \
+#define CM_CREATE(NAME, KERNEL, PLASTIC, PW) \
   static PetscErrorCode NAME(SlumpRheology rheo) \
   { \
     PetscFunctionBeginUser; \
     PetscCall(CMCommon(rheo)); \
     rheo->kernel    = KERNEL; \
+    rheo->plastic   = PLASTIC; \
     rheo->pointwise = PW; \
     PetscFunctionReturn(0); \
   }
-CM_CREATE(CreateCM9, CM9Kernel, CM9_pointwise)
-CM_CREATE(CreateCM10, CM10Kernel, CM10_pointwise)
-CM_CREATE(CreateCM11, CM11Kernel, CM11_pointwise)
-CM_CREATE(CreateCM12, CM12Kernel, CM12_pointwise)
+CM_CREATE(CreateCM9, CM9Kernel, CM9Plastic, CM9_pointwise)
+CM_CREATE(CreateCM10, CM10Kernel, CM10Plastic, CM10_pointwise)
+CM_CREATE(CreateCM11, CM11Kernel, CM11Plastic, CM11_pointwise)
+CM_CREATE(CreateCM12, CM12Kernel, CM12Plastic, CM12_pointwise)
 
 static PetscErrorCode CreateThesis(SlumpRheology rheo)
 {
@@ -118,6 +147,7 @@ static PetscErrorCode CreateThesis(SlumpRheology rheo)
   rheo->ireg               = 5;
   rheo->reg_larger_stiffer = PETSC_FALSE;
   rheo->kernel             = ThesisKernel;
+  rheo->plastic            = ThesisPlastic;
   rheo->pointwise          = Thesis_pointwise;
   PetscFunctionReturn(0);
 }

@@ -9,7 +9,7 @@ static inline void NewtonianKernel(const PetscScalar prm[], PetscReal g, PetscRe
   *ty    = 0.0;
 }
 
-SLUMP_RHEOLOGY_DEFINE_POINTWISE(Newtonian, NewtonianKernel)
+SLUMP_RHEOLOGY_DEFINE_POINTWISE(Newtonian, NewtonianKernel, NULL)
 
 PetscErrorCode SlumpRheologyCreate_Newtonian(SlumpRheology rheo)
 {

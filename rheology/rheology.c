@@ -106,6 +106,7 @@ PetscErrorCode SlumpRheologySetType(SlumpRheology rheo, SlumpRheologyType type)
   rheo->reg_larger_stiffer = PETSC_TRUE;
   rheo->ops.check          = NULL;
   rheo->ops.plugviscosity  = NULL;
+  rheo->plastic            = NULL;
   PetscCall(PetscStrncpy(rheo->type, type, sizeof(rheo->type)));
   PetscCall((*create)(rheo));
   for (PetscInt i = 0; i < rheo->nparam; ++i)
@@ -285,5 +286,23 @@ PetscErrorCode SlumpRheologyGetPointwise(SlumpRheology rheo, SlumpRheologyPointw
 {
   PetscFunctionBeginUser;
   *pw = rheo->pointwise;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpRheologyHasPlasticPart(SlumpRheology rheo, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  *has = rheo->plastic ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpRheologyEvaluatePlastic(SlumpRheology rheo, PetscReal gdot, PetscReal p, const PetscReal x[], PetscReal *tau_y, PetscReal *R, PetscReal *dR)
+{
+  PetscScalar cst[SLUMP_C_NUM] = {0}, *prm = &cst[SLUMP_C_RHEO]; /* laid out as the kernels' constants, no surface table */
+  PetscInt    n;
+  PetscFunctionBeginUser;
+  PetscCheck(rheo->plastic, rheo->comm, PETSC_ERR_SUP, "Rheology '%s' has no plastic part", rheo->type);
+  PetscCall(SlumpRheologyGetConstants(rheo, &n, prm));
+  rheo->plastic(prm, gdot, p, x, tau_y, R, dR);
   PetscFunctionReturn(0);
 }

@@ -25,6 +25,7 @@ struct _p_SlumpRheology {
   char                   type[64];
   SlumpRheologyOps       ops;
   SlumpViscosityKernel   kernel;
+  SlumpPlasticKernel     plastic; /* NULL: no yield term */
   SlumpRheologyPointwise pointwise;
   PetscInt               nparam;
   SlumpRheologyParam     param[SLUMP_RHEOLOGY_MAX_PARAM];

@@ -20,6 +20,34 @@ typedef const char *SlumpRheologyType;
    position (lithostatic yield stress). */
 typedef void (*SlumpViscosityKernel)(const PetscScalar params[], PetscReal gdot, PetscReal p, const PetscReal x[], PetscReal *eta, PetscReal *deta_dgdot, PetscReal *deta_dp, PetscReal *yield_stress);
 
+/* The plastic part of a yield-stress law, for the stress-velocity Newton
+   (-newton_linearisation stress_velocity, timeint/). A yield-stress model
+   writes its viscosity as
+     eta(g, p, x) = eta_rest(g, p) + tau_y(p, x) R(g),
+   where R is the regularised 1/||gdot|| of its yield term (Papanastasiou
+   (1 - exp(-m g))/g, Bercovier-Engelman 1/sqrt(g^2 + eps^2), simple
+   1/(g + eps), ...) and tau_y its yield stress (tau0, mu P, the lithostatic
+   mu rho g depth ...). The plastic kernel returns tau_y, R and dR/dg at
+   (g, p, x), in the same parameter layout as the viscosity kernel; the rest
+   of the law is linearised as before. With it the Newton linearisation keeps
+   the plastic stress S (||S|| <= tau_y) as an independent variable at every
+   quadrature point: the tangent's plastic rank-one term tau_y R'(g)/g
+   gdot (x) gdot becomes R'/(R g) sym(S (x) gdot), bounded whatever the
+   regularisation, and S is updated from the linearised law after each
+   Newton correction (slumppointwise.h, SlumpPwDualUpdate). A model without a
+   plastic kernel (NULL: Newtonian) is linearised with the primal tangent. */
+typedef void (*SlumpPlasticKernel)(const PetscScalar params[], PetscReal gdot, PetscReal p, const PetscReal x[], PetscReal *tau_y, PetscReal *R, PetscReal *dR);
+/* Whether the model has a plastic kernel (the stress-velocity Newton applies). */
+PETSC_EXTERN PetscErrorCode SlumpRheologyHasPlasticPart(SlumpRheology rheo, PetscBool *has);
+/* Host-side plastic part at (gdot, p, x) (tests). */
+PETSC_EXTERN PetscErrorCode SlumpRheologyEvaluatePlastic(SlumpRheology rheo, PetscReal gdot, PetscReal p, const PetscReal x[], PetscReal *tau_y, PetscReal *R, PetscReal *dR);
+
+/* One step of the dual variable at a quadrature point (stress-velocity
+   Newton): u, u_x at the linearisation point, du, du_x the Newton correction
+   (NULL: initialise S consistently with u), S[dim*dim] (plane; dim in the
+   anti-plane formulation) updated in place. */
+typedef void (*SlumpDualFn)(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_x[], const PetscScalar du[], const PetscScalar du_x[], const PetscReal x[], const PetscScalar constants[], PetscScalar S[]);
+
 PETSC_EXTERN PetscErrorCode SlumpRheologyCreate(MPI_Comm comm, SlumpRheology *rheo);
 PETSC_EXTERN PetscErrorCode SlumpRheologyDestroy(SlumpRheology *rheo);
 PETSC_EXTERN PetscErrorCode SlumpRheologySetType(SlumpRheology rheo, SlumpRheologyType type);
@@ -73,5 +101,9 @@ typedef struct {
   PetscPointFunc tp_eta;      /* mixed viscosity                    */
   PetscPointFunc tp_diss;     /* material dissipation m eta ||gdot||^2 */
   PetscPointFunc tp_yielded;  /* material fraction where yielded    */
+  /* stress-velocity Newton: the g3 kernels above take the plastic stress S
+     at the quadrature point through their a_t argument (the assembly's
+     aux time derivative, otherwise unused; NULL: the primal tangent) */
+  SlumpDualFn    dual;        /* S update (S = 0 without a plastic kernel) */
 } SlumpRheologyPointwise;
 PETSC_EXTERN PetscErrorCode SlumpRheologyGetPointwise(SlumpRheology rheo, SlumpRheologyPointwise *pw);

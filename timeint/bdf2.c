@@ -35,6 +35,10 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
   N  = (PetscInt)PetscCeilReal((ti->tfinal - ti->t0) / ti->dt - 1e-9);
   dt = (ti->tfinal - ti->t0) / N;
+  {
+    PetscBool sv;
+    PetscCall(SlumpLinearisationSetUp(ti->prob, comm, &sv));
+  }
   PetscCall(SlumpImplicitSolverCreate(ti->prob, X, &s));
   PetscCall(VecDuplicate(X, &Yprev));
   PetscCall(VecDuplicate(X, &Yn));
@@ -58,7 +62,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
       PetscCall(VecAXPBYPCZ(beta, -2.0 / dt, 0.5 / dt, 0.0, Yn, Yprev));
     }
     PetscCall(SlumpImplicitSolverSolve(s, tn1, alpha, beta, X, &conv, &nits, &lits));
-    PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g; reduce -time_dt", (double)tn1);
+    PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g; reduce -time_dt, raise -newton_max_it, or use -newton_linearisation stress_velocity", (double)tn1);
     {
       SlumpStepRecord r = {tn1, dt, (n == 0 || !have_prev) ? 1 : 2, nits, lits, 0, 0, X};
       ti->stats.steps++;
@@ -116,6 +120,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
       PetscCall(SlumpProblemPostStep(ti->prob, ti->stats.steps, tn1, X, &changed));
       if (changed) {
         have_prev = PETSC_FALSE;
+        PetscCall(SlumpProblemDualReset(ti->prob));
         ti->stats.restarts++;
       }
     }

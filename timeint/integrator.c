@@ -19,6 +19,7 @@ PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti)
   s->dtout       = 0.1;
   s->rtol        = 1e-4;
   s->atol        = 1e-8;
+  s->atol_auto   = PETSC_TRUE;
   s->max_steps   = 1000000;
   s->max_nonlin_iters = 4;
   s->nonlin_conv_coef = 0.33;
@@ -88,8 +89,9 @@ PetscErrorCode SlumpIntegratorSetLineSearch(SlumpIntegrator ti, PetscBool on)
 PetscErrorCode SlumpIntegratorSetTolerances(SlumpIntegrator ti, PetscReal rtol, PetscReal atol)
 {
   PetscFunctionBeginUser;
-  ti->rtol = rtol;
-  ti->atol = atol;
+  ti->rtol      = rtol;
+  ti->atol      = atol;
+  ti->atol_auto = PETSC_FALSE;
   PetscFunctionReturn(0);
 }
 
@@ -252,7 +254,11 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCall(PetscOptionsReal("-time_final", "Final time", "", ti->tfinal, &ti->tfinal, NULL));
   PetscCall(PetscOptionsReal("-time_output_dt", "Interval between outputs", "", ti->dtout, &ti->dtout, NULL));
   PetscCall(PetscOptionsReal("-time_rtol", "Relative tolerance (ida)", "", ti->rtol, &ti->rtol, NULL));
-  PetscCall(PetscOptionsReal("-time_atol", "Absolute tolerance (ida)", "", ti->atol, &ti->atol, NULL));
+  {
+    PetscBool set;
+    PetscCall(PetscOptionsReal("-time_atol", "Absolute tolerance of the velocity (ida; default 1e-3 rtol max|u(0)|, or 1e-8 from rest)", "", ti->atol, &ti->atol, &set));
+    if (set) ti->atol_auto = PETSC_FALSE;
+  }
   PetscCall(PetscOptionsReal("-time_dt", "Time step (bdf2); first step (ida, 0: IDA's choice)", "", ti->dt, &ti->dt, NULL));
   {
     const char *kinds[] = {"newton", "linesearch"};

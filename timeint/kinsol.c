@@ -18,6 +18,7 @@ struct _n_SlumpImplicitSolver {
   PetscReal       t, alpha, fnormtol, fnormrtol, maxstep, fref;
   Vec             beta;
   PetscInt        maxit;
+  PetscBool       linesearch;
   SlumpStats      stats;
   PetscReal       hist[128]; /* max|F| at each Newton iterate of the last solve */
   PetscInt        nhist;
@@ -57,6 +58,8 @@ static PetscErrorCode KinJac_Private(SlumpImplicitSolver s, Vec u, Vec fu)
   PetscFunctionBeginUser;
   if (s->nhist < 128) PetscCall(VecNorm(fu, NORM_INFINITY, &s->hist[s->nhist++]));
   PetscCall(FormYdot(s, u, &ydot));
+  /* stress-velocity Newton: S follows the step KINSOL took to u */
+  PetscCall(SlumpProblemDualLinearise(s->prob, s->t, u));
   PetscCall(SlumpProblemJacobian(s->prob, s->t, u, ydot, s->alpha, s->J));
   PetscFunctionReturn(0);
 }
@@ -77,11 +80,13 @@ PetscErrorCode SlumpImplicitSolverCreate(SlumpProblem prob, Vec X, SlumpImplicit
   s->fnormrtol = 1e-9;
   s->maxit     = 50;
   s->maxstep   = 1e12;
+  s->linesearch = PETSC_TRUE;
   PetscOptionsBegin(s->comm, NULL, "Newton (KINSOL)", "SlumpImplicitSolver");
   PetscCall(PetscOptionsReal("-newton_atol", "Absolute tolerance on max |F|", "", s->fnormtol, &s->fnormtol, NULL));
   PetscCall(PetscOptionsReal("-newton_rtol", "Tolerance on max |F| relative to its initial value", "", s->fnormrtol, &s->fnormrtol, NULL));
   PetscCall(PetscOptionsReal("-newton_max_step", "Largest scaled Newton step (KINSOL's default is 1 from a zero guess)", "", s->maxstep, &s->maxstep, NULL));
   PetscCall(PetscOptionsInt("-newton_max_it", "Maximum Newton iterations per solve", "", s->maxit, &s->maxit, NULL));
+  PetscCall(PetscOptionsBool("-newton_linesearch", "KINSOL's line search on |F| (false: full Newton steps)", "", s->linesearch, &s->linesearch, NULL));
   PetscOptionsEnd();
   PetscCheck(s->fnormtol > 0 && s->fnormrtol >= 0, s->comm, PETSC_ERR_USER_INPUT, "-newton_atol must be positive and -newton_rtol non-negative");
   PetscCheck(s->maxit > 0, s->comm, PETSC_ERR_USER_INPUT, "-newton_max_it must be a positive integer");
@@ -167,7 +172,8 @@ PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, Pets
   s->fref = 0.0;
   PetscCheck(!KINSetFuncNormTol(s->kmem, tol), s->comm, PETSC_ERR_LIB, "KINSetFuncNormTol failed");
   PetscCall(SlumpSUNLinSolGetCounts(s->LS, &ls0, &li0));
-  flag = KINSol(s->kmem, s->nu, KIN_LINESEARCH, s->nscale, s->nscale);
+  PetscCall(SlumpProblemDualBegin(s->prob, t, s->u));
+  flag = KINSol(s->kmem, s->nu, s->linesearch ? KIN_LINESEARCH : KIN_NONE, s->nscale, s->nscale);
   KINGetNumNonlinSolvIters(s->kmem, &nni1);
   PetscCall(SlumpSUNLinSolGetCounts(s->LS, &ls1, &li1));
   KINGetFuncNorm(s->kmem, &fnorm);
@@ -176,6 +182,7 @@ PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, Pets
   else if (flag == KIN_STEP_LT_STPTOL) *converged = (fnorm <= 100 * tol) ? PETSC_TRUE : PETSC_FALSE;
   else *converged = PETSC_FALSE;
   if (flag == KIN_INITIAL_GUESS_OK) nni1 = 0; /* KINSol counts per call */
+  PetscCall(SlumpProblemDualEnd(s->prob, t, s->u, *converged));
   if (*converged) PetscCall(VecCopy(s->u, X));
   if (newton_its) *newton_its = (PetscInt)nni1;
   if (lin_its) *lin_its = li1 - li0;
@@ -201,6 +208,24 @@ PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *st
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpLinearisationSetUp(SlumpProblem prob, MPI_Comm comm, PetscBool *sv)
+{
+  const char   *kinds[] = {"primal", "stress_velocity"};
+  SlumpRheology rheo;
+  PetscBool     plastic = PETSC_FALSE;
+  PetscInt      k;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  if (rheo) PetscCall(SlumpRheologyHasPlasticPart(rheo, &plastic));
+  k = plastic ? 1 : 0;
+  PetscOptionsBegin(comm, NULL, "Newton linearisation", "");
+  PetscCall(PetscOptionsEList("-newton_linearisation", "Newton's tangent for yield-stress laws: primal, or stress_velocity (the plastic stress as a quadrature-point variable; default for models with a yield term)", "", kinds, 2, kinds[k], &k, NULL));
+  PetscOptionsEnd();
+  *sv = k == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(SlumpProblemSetStressVelocity(prob, *sv));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
 {
   SlumpImplicitSolver s;
@@ -221,6 +246,10 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
   PetscCheck(factor > 1.0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_factor must be > 1; got %g", (double)factor);
   PetscCheck(!set || regname, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_start needs a regularised rheology; this one has no regularisation parameter");
   PetscCheck(!set || start > 0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_start must be positive; got %g", (double)start);
+  {
+    PetscBool sv;
+    PetscCall(SlumpLinearisationSetUp(prob, comm, &sv));
+  }
   PetscCall(SlumpImplicitSolverCreate(prob, X, &s));
   v = set ? start : target;
   for (;;) {

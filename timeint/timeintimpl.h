@@ -44,6 +44,7 @@ struct _n_SlumpIntegrator {
   PetscReal            t0, tfinal, dtout, rtol, atol, dt, t, h_last;
   PetscInt             order_last, max_steps, max_nonlin_iters;
   PetscBool            exact_newton, linesearch;
+  PetscBool            atol_auto; /* -time_atol not given: 1e-3 rtol max|u0| (ida.c) */
   PetscReal            nonlin_conv_coef;
   PetscReal            restart_step; /* first step after a between-step restart, as a fraction of the last step */
   PetscInt             narrest;
@@ -66,5 +67,12 @@ PETSC_INTERN PetscBool      SlumpIntegratorArrestRecord(SlumpIntegrator, PetscIn
 /* IDA's nonlinear solver replaced by KINSOL with a line search per stage. */
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchCreate(SlumpProblem, Vec X, SUNContext, SUNNonlinearSolver *);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchGetLinearIterations(SUNNonlinearSolver, PetscInt *);
+/* IDA's nonlinear solver replaced by the stress-velocity Newton (exact
+   Jacobian with the plastic stress at every iterate; maxit iterations). */
+PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem, Vec X, PetscInt maxit, SUNContext, SUNNonlinearSolver *);
+PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(SUNNonlinearSolver, PetscInt *);
+/* -newton_linearisation primal|stress_velocity (default: stress_velocity
+   when the rheology has a plastic part): *sv, and the problem set up for it. */
+PETSC_INTERN PetscErrorCode SlumpLinearisationSetUp(SlumpProblem, MPI_Comm, PetscBool *sv);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator, Vec);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator, Vec);
