@@ -378,6 +378,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &R->regularisation_value, NULL));
     PetscCall(PetscStrncpy(R->regularisation, regname ? regname : "none", sizeof(R->regularisation)));
     PetscCall(PetscStrncpy(R->integrator, scene->steady ? "steady" : SlumpIntegratorTypes[itype], sizeof(R->integrator)));
+    if (ti) PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol)); /* the absolute tolerance the run resolved */
     R->rtol     = rtol;
     R->atol     = atol;
     R->dt       = dt;

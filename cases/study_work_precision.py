@@ -9,7 +9,13 @@ arrest_error), otherwise against the reference run given by --reference
 docs/studies/wp_<scene>_{ida,bdf2}.csv, docs/wp_<scene>.png and the ratio of
 residual evaluations BDF2 / IDA at 1 % accuracy to docs/studies/wp_<scene>.txt.
 
-usage: python3 cases/study_work_precision.py couette|duct [--ranks 2] [--quick]
+Methods: ida (IDA with the default stress-velocity Newton), ida_primal
+(IDA's modified Newton on the primal tangent), ida_linesearch, bdf2 (fixed
+step, KINSOL with line search, stress-velocity tangent) and bdf2_primal.
+IDA runs use the default absolute tolerance (1e-3 rtol max|u(0)|).
+
+usage: python3 cases/study_work_precision.py couette|duct|poiseuille [--ranks 2]
+       [--meshes 32] [--methods ida,ida_primal,bdf2,bdf2_primal] [--docs DIR]
 """
 import argparse
 import csv
@@ -27,6 +33,15 @@ SETUPS = {
                  rtols="1e-3,1e-4,1e-5,1e-6", dts="4e-3,2e-3,1e-3,5e-4,2.5e-4,1.25e-4",
                  opts=["-rheology_papanastasiou_m", "1e4", "-time_final", "0.1"],
                  reference=["-mesh_n", "64", "-time_rtol", "1e-5", "-time_atol", "1e-9"], title="duct cessation, Bn 0.1, m 1e4"),
+    # the issue 31 set-ups: one mesh each, the temporal error against a tight
+    # run on the same mesh (duct) or the exact model (Poiseuille, Couette)
+    "duct32": dict(scene="duct_cessation", mesh="mesh_n", meshes="32",
+                   rtols="3e-2,1e-2,3e-3,1e-3,1e-4", dts="8e-3,4e-3,2e-3,1e-3,5e-4",
+                   opts=["-rheology_papanastasiou_m", "1e4", "-time_final", "0.1"],
+                   reference=["-mesh_n", "32", "-time_rtol", "1e-7"], title="duct cessation 32 x 32, Bn 0.1, m 1e4"),
+    "poiseuille": dict(scene="poiseuille_cessation", mesh="mesh_ny", meshes="32",
+                       rtols="3e-2,1e-2,3e-3,1e-3,1e-4", dts="1e-2,5e-3,2.5e-3,1.25e-3,6.25e-4",
+                       opts=["-bn", "0.5", "-rheology_papanastasiou_m", "1e4", "-time_final", "1"], reference=None, title="Poiseuille cessation, Bn 0.5, m 1e4"),
 }
 COMMON = ["-arrest_stop", "first", "-time_max_steps", "20000"]
 
@@ -51,10 +66,13 @@ def main():
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--docs", default=os.path.join(HERE, "..", "docs"))
     ap.add_argument("--work", default="out/study_wp")
-    ap.add_argument("--methods", default="ida,ida_linesearch,bdf2", help="comma-separated subset of ida, ida_linesearch, bdf2")
+    ap.add_argument("--methods", default="ida,ida_primal,bdf2,bdf2_primal", help="comma-separated subset of ida, ida_primal, ida_linesearch, bdf2, bdf2_primal")
+    ap.add_argument("--meshes", default=None, help="the meshes of the sweep (default: the set-up's)")
     ap.add_argument("--reuse", action="store_true", help="keep the CSV files of methods already in docs/studies")
     a = ap.parse_args()
-    s = SETUPS[a.case]
+    s = dict(SETUPS[a.case])
+    if a.meshes:
+        s["meshes"] = a.meshes
     mpi = [a.mpiexec, "--oversubscribe", "--allow-run-as-root", "-n", str(a.ranks)]
     os.makedirs(os.path.join(a.docs, "studies"), exist_ok=True)
     ref = None
@@ -68,9 +86,11 @@ def main():
         ref = float(rows_of(os.path.join(out, "summary.csv"))[0]["t_arrest"])
         print("reference arrest time %.10g (%s)" % (ref, " ".join(s["reference"])))
     files = {}
-    methods = (("ida", "time_rtol", s["rtols"], ["-time_atol", "1e-9"]),
-               ("ida_linesearch", "time_rtol", s["rtols"], ["-time_atol", "1e-9", "-ida_nonlinear_solver", "linesearch"]),
-               ("bdf2", "time_dt", s["dts"], ["-time_integrator", "bdf2"]))
+    methods = (("ida", "time_rtol", s["rtols"], []),
+               ("ida_primal", "time_rtol", s["rtols"], ["-newton_linearisation", "primal"]),
+               ("ida_linesearch", "time_rtol", s["rtols"], ["-ida_nonlinear_solver", "linesearch"]),
+               ("bdf2", "time_dt", s["dts"], ["-time_integrator", "bdf2"]),
+               ("bdf2_primal", "time_dt", s["dts"], ["-time_integrator", "bdf2", "-newton_linearisation", "primal"]))
     for method, opt, values, extra in methods:
         if method not in a.methods.split(","):
             continue
@@ -91,7 +111,7 @@ def main():
                 r["arrest_error"] = "%.6e" % (abs(float(r["t_arrest"]) - ref) / ref) if r["status"] == "ok" and r["t_arrest"] else ""
         write(dst, rows)
         files[method] = dst
-    labels = {"ida": "IDA Newton", "ida_linesearch": "IDA line search", "bdf2": "BDF2 fixed"}
+    labels = {"ida": "IDA stress-velocity", "ida_primal": "IDA primal", "ida_linesearch": "IDA line search", "bdf2": "BDF2 fixed (stress-velocity)", "bdf2_primal": "BDF2 fixed (primal)"}
     subprocess.run([sys.executable, os.path.join(HERE, "plot_sweep.py"), "work"] + [files[m] + ":" + labels[m] for m in files] + [ "--curve", s["mesh"],
                     "--title", "%s: arrest-time error against wall time" % s["title"], "--out", os.path.join(a.docs, "wp_%s.png" % a.case)], check=True)
     # the cheapest run reaching 1 % for each method and mesh, and the ratio
@@ -106,16 +126,16 @@ def main():
             if key not in best or int(r["res_evals"]) < int(best[key]["res_evals"]):
                 best[key] = r
     for mesh in s["meshes"].split(","):
-        for method in ("ida", "ida_linesearch", "bdf2"):
+        for method in ("ida", "ida_primal", "ida_linesearch", "bdf2", "bdf2_primal"):
             r = best.get((mesh, method))
             if r:
-                lines.append("%-8s %-6s %-10s %-12s %-10s %-10s %-8s" % (mesh, method, r["time_dt" if method == "bdf2" else "time_rtol"], r["arrest_error"], r["res_evals"], r["wall_time"], r["steps"]))
-        if (mesh, "ida") in best and (mesh, "bdf2") in best:
-            ratio = int(best[(mesh, "bdf2")]["res_evals"]) / int(best[(mesh, "ida")]["res_evals"])
-            lines.append("%-8s ratio of residual evaluations BDF2 / IDA (Newton) at 1 %%: %.3f" % (mesh, ratio))
-        if (mesh, "ida_linesearch") in best and (mesh, "bdf2") in best:
-            ratio = int(best[(mesh, "bdf2")]["res_evals"]) / int(best[(mesh, "ida_linesearch")]["res_evals"])
-            lines.append("%-8s ratio of residual evaluations BDF2 / IDA (line search) at 1 %%: %.3f" % (mesh, ratio))
+                lines.append("%-8s %-14s %-10s %-12s %-10s %-10s %-8s" % (mesh, method, r["time_dt" if method.startswith("bdf2") else "time_rtol"], r["arrest_error"], r["res_evals"], r["wall_time"], r["steps"]))
+        fixed = [best[(mesh, m)] for m in ("bdf2", "bdf2_primal") if (mesh, m) in best]
+        if fixed:
+            cheapest = min(int(r["res_evals"]) for r in fixed)
+            for m in ("ida", "ida_primal", "ida_linesearch"):
+                if (mesh, m) in best:
+                    lines.append("%-8s ratio of residual evaluations best BDF2 / %s at 1 %%: %.3f" % (mesh, m, cheapest / int(best[(mesh, m)]["res_evals"])))
     text = "\n".join(lines) + "\n"
     print(text)
     with open(os.path.join(a.docs, "studies", "wp_%s.txt" % a.case), "w") as f:
