@@ -389,6 +389,8 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
   PetscCall(PetscFree(cd));
   PetscCall(MatAssemblyBegin(Jac, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(Jac, MAT_FINAL_ASSEMBLY));
+  /* the yielded set this Jacobian was built with */
+  if (S) PetscCall(PetscArraycpy(prob->dualYieldJ, prob->dualYield, a->ncell * a->Nq));
   PetscCall(PetscLogEventEnd(SLUMP_Jacobian, 0, 0, 0, 0));
   PetscFunctionReturn(0);
 }
@@ -396,7 +398,7 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
 /* The plastic stress S at every (cell, quadrature point): consistent with
    locX (locdX NULL), or updated from the linearisation point locX with the
    Newton correction locdX (zero on constrained dofs). */
-PetscErrorCode SlumpAssembleDual(SlumpProblem prob, PetscReal t, Vec locX, Vec locdX, PetscScalar *S)
+PetscErrorCode SlumpAssembleDual(SlumpProblem prob, PetscReal t, Vec locX, Vec locdX, PetscScalar *S, PetscBool *yielded)
 {
   SlumpAssembly          a = prob->assembly;
   PetscDS                ds;
@@ -414,7 +416,10 @@ PetscErrorCode SlumpAssembleDual(SlumpProblem prob, PetscReal t, Vec locX, Vec l
   if (locdX) PetscCall(VecGetArrayRead(locdX, &da));
   for (PetscInt c = 0; c < a->ncell; ++c) {
     EvaluateCell(a, c, xa, NULL, da, cd); /* the correction's values and gradients in ul, ulx */
-    for (PetscInt q = 0; q < a->Nq; ++q) pw.dual(a->dim, a->Nf, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ux[q * 24], da ? &cd->ul[q * 8] : NULL, da ? &cd->ulx[q * 24] : NULL, &cd->x[q * 3], constants, &S[(c * a->Nq + q) * prob->dualNs]);
+    for (PetscInt q = 0; q < a->Nq; ++q) {
+      const PetscBool y = pw.dual(a->dim, a->Nf, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ux[q * 24], da ? &cd->ul[q * 8] : NULL, da ? &cd->ulx[q * 24] : NULL, &cd->x[q * 3], constants, &S[(c * a->Nq + q) * prob->dualNs]);
+      if (yielded) yielded[c * a->Nq + q] = y;
+    }
   }
   if (locdX) PetscCall(VecRestoreArrayRead(locdX, &da));
   PetscCall(VecRestoreArrayRead(locX, &xa));

@@ -20,6 +20,7 @@ PetscErrorCode SlumpProblemSetStressVelocity(SlumpProblem prob, PetscBool on)
   prob->dualNs = dim * dim;
   n            = PetscMax(ncell * nq * prob->dualNs, 1);
   PetscCall(PetscCalloc2(n, &prob->dual, n, &prob->dualSave));
+  PetscCall(PetscCalloc2(PetscMax(ncell * nq, 1), &prob->dualYield, PetscMax(ncell * nq, 1), &prob->dualYieldJ));
   PetscCall(DMCreateGlobalVector(prob->dm, &prob->dualLin));
   PetscCall(DMCreateLocalVector(prob->dm, &prob->locDual));
   PetscFunctionReturn(0);
@@ -50,7 +51,7 @@ PetscErrorCode SlumpProblemDualBegin(SlumpProblem prob, PetscReal t, Vec X)
   if (prob->dualSaved) PetscCall(PetscArraycpy(prob->dual, prob->dualSave, n));
   else {
     PetscCall(SlumpProblemFillLocal(prob, t, X));
-    PetscCall(SlumpAssembleDual(prob, t, prob->locX, NULL, prob->dual));
+    PetscCall(SlumpAssembleDual(prob, t, prob->locX, NULL, prob->dual, prob->dualYield));
   }
   prob->dualInSolve = PETSC_TRUE;
   prob->dualLinSet  = PETSC_FALSE;
@@ -66,7 +67,7 @@ static PetscErrorCode DualStep(SlumpProblem prob, PetscReal t, Vec X)
   PetscCall(DMGlobalToLocal(prob->dm, prob->dualLin, INSERT_VALUES, prob->locDual));
   PetscCall(VecAYPX(prob->dualLin, -1.0, X)); /* back to X_lin */
   PetscCall(SlumpProblemFillLocal(prob, t, prob->dualLin));
-  PetscCall(SlumpAssembleDual(prob, t, prob->locX, prob->locDual, prob->dual));
+  PetscCall(SlumpAssembleDual(prob, t, prob->locX, prob->locDual, prob->dual, prob->dualYield));
   PetscFunctionReturn(0);
 }
 
@@ -111,5 +112,17 @@ PetscErrorCode SlumpProblemDualGetArray(SlumpProblem prob, PetscInt *n, PetscInt
   *n /= prob->dualNs;
   *ns = prob->dualNs;
   *S  = prob->dual;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemDualYieldChanges(SlumpProblem prob, PetscInt *nchanged)
+{
+  PetscInt ncell, nq, dim, n = 0;
+  PetscFunctionBeginUser;
+  *nchanged = 0;
+  if (!prob->dualOn) PetscFunctionReturn(0);
+  PetscCall(SlumpAssemblyGetSizes(prob, &ncell, &nq, &dim));
+  for (PetscInt i = 0; i < ncell * nq; ++i) n += prob->dualYield[i] != prob->dualYieldJ[i] ? 1 : 0;
+  PetscCall(MPIU_Allreduce(&n, nchanged, 1, MPIU_INT, MPI_SUM, prob->comm));
   PetscFunctionReturn(0);
 }

@@ -36,6 +36,7 @@ PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
   PetscCall(VecDestroy(&p->diagX));
   PetscCall(SlumpAssemblyDestroy(&p->assembly));
   PetscCall(PetscFree2(p->dual, p->dualSave));
+  PetscCall(PetscFree2(p->dualYield, p->dualYieldJ));
   PetscCall(VecDestroy(&p->dualLin));
   PetscCall(VecDestroy(&p->locDual));
   PetscCall(PetscFree2(p->bcIdx, p->bcVal));

@@ -286,6 +286,10 @@ PETSC_EXTERN PetscErrorCode SlumpProblemGetStressVelocity(SlumpProblem prob, Pet
 PETSC_EXTERN PetscErrorCode SlumpProblemDualBegin(SlumpProblem prob, PetscReal t, Vec X);
 PETSC_EXTERN PetscErrorCode SlumpProblemDualLinearise(SlumpProblem prob, PetscReal t, Vec X);
 PETSC_EXTERN PetscErrorCode SlumpProblemDualEnd(SlumpProblem prob, PetscReal t, Vec X, PetscBool converged);
+/* Quadrature points whose yielded state (eta ||gdot|| > tau_y) changed since
+   the last Jacobian was assembled with S (collective): a Newton reusing its
+   Jacobian refreshes it when this is not 0. */
+PETSC_EXTERN PetscErrorCode SlumpProblemDualYieldChanges(SlumpProblem prob, PetscInt *nchanged);
 /* Forget the carried S (the state was changed between steps). */
 PETSC_EXTERN PetscErrorCode SlumpProblemDualReset(SlumpProblem prob);
 /* The S array: n quadrature points (local cells x points per cell), ns

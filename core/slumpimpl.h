@@ -80,6 +80,7 @@ struct _n_SlumpProblem {
   PetscBool     dualOn, dualInSolve, dualSaved, dualLinSet;
   PetscInt      dualNs, dualNq;
   PetscScalar  *dual, *dualSave;
+  PetscBool    *dualYield, *dualYieldJ; /* yielded at the last update / at the last Jacobian */
   Vec           dualLin, locDual;
   /* pressure reference point (closed boxes) */
   PetscBool     pinSet;
@@ -99,7 +100,7 @@ PETSC_INTERN PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem, PetscReal t,
 PETSC_INTERN PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem, Vec locX, const char label[], PetscInt comp, PetscBdPointFunc func, PetscReal *integral, PetscReal *length);
 /* S at every quadrature point: initialised from locX (locdX NULL) or
    updated with the correction locdX (SlumpDualFn of the rheology) */
-PETSC_INTERN PetscErrorCode SlumpAssembleDual(SlumpProblem, PetscReal t, Vec locX, Vec locdX, PetscScalar *S);
+PETSC_INTERN PetscErrorCode SlumpAssembleDual(SlumpProblem, PetscReal t, Vec locX, Vec locdX, PetscScalar *S, PetscBool *yielded);
 PETSC_INTERN PetscErrorCode SlumpAssemblyGetSizes(SlumpProblem, PetscInt *ncell, PetscInt *nq, PetscInt *dim);
 PETSC_INTERN PetscErrorCode SlumpAssembleIntegrals(SlumpProblem, PetscReal t, Vec locX, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Fill prob->locX with X and the boundary values at t. */

@@ -367,11 +367,25 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
     SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &m_, &dm_); /* an area share, like the other averages */ \
     f[0] = (eta * g > ty) ? m_ : 0.0; \
   } \
-  static void NAME##_dual(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_x[], const PetscScalar du[], const PetscScalar du_x[], const PetscReal x[], const PetscScalar constants[], PetscScalar S[]) \
+  static PetscBool NAME##_dual(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_x[], const PetscScalar du[], const PetscScalar du_x[], const PetscReal x[], const PetscScalar constants[], PetscScalar S[]) \
   { \
     const PetscBool ap_ = (uOff[1] - uOff[0] == 1) ? PETSC_TRUE : PETSC_FALSE; \
     const PetscReal p_  = (!ap_ && Nf > 1) ? PetscRealPart(u[uOff[1]]) : 0.0, dp_ = (!ap_ && Nf > 1 && du) ? PetscRealPart(du[uOff[1]]) : 0.0; \
+    PetscScalar     gx_[9]; \
+    PetscReal       g_, eta_, d1_, d2_, ty_; \
     SlumpPwDualUpdate(dim, ap_, u_x, p_, du_x, dp_, x, &constants[SLUMP_C_RHEO], PLASTIC, S); \
+    /* yielded at the corrected state */ \
+    for (PetscInt i_ = 0; i_ < (ap_ ? dim : dim * dim); ++i_) gx_[i_] = u_x[i_] + (du_x ? du_x[i_] : 0.0); \
+    if (ap_) { \
+      g_ = 0.0; \
+      for (PetscInt d_ = 0; d_ < dim; ++d_) g_ += PetscRealPart(gx_[d_] * gx_[d_]); \
+      g_ = PetscSqrtReal(g_); \
+    } else { \
+      PetscScalar gs_[9]; \
+      g_ = SlumpPwStrainRate(dim, gx_, gs_); \
+    } \
+    KERNEL(&constants[SLUMP_C_RHEO], g_, p_ + dp_, x, &eta_, &d1_, &d2_, &ty_); \
+    return (eta_ * g_ > ty_) ? PETSC_TRUE : PETSC_FALSE; \
   } \
   static const SlumpRheologyPointwise NAME##_pointwise = {NAME##_f1_u, NAME##_g2_up, NAME##_g3_uu, NAME##_eta, NAME##_shear_rate, NAME##_dissipation, NAME##_yielded, NAME##_ap_f1_u, NAME##_ap_g3_uu, \
                                                           NAME##_tp_f1_u, NAME##_tp_g2_up, NAME##_tp_g3_uu, NAME##_tp_g2_uphi, NAME##_tp_eta, NAME##_tp_dissipation, NAME##_tp_yielded, NAME##_dual};

@@ -45,8 +45,10 @@ PETSC_EXTERN PetscErrorCode SlumpRheologyEvaluatePlastic(SlumpRheology rheo, Pet
 /* One step of the dual variable at a quadrature point (stress-velocity
    Newton): u, u_x at the linearisation point, du, du_x the Newton correction
    (NULL: initialise S consistently with u), S[dim*dim] (plane; dim in the
-   anti-plane formulation) updated in place. */
-typedef void (*SlumpDualFn)(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_x[], const PetscScalar du[], const PetscScalar du_x[], const PetscReal x[], const PetscScalar constants[], PetscScalar S[]);
+   anti-plane formulation) updated in place. Returns whether the point is
+   yielded (eta ||gdot|| > tau_y) at u + du: the Newton refreshes its
+   Jacobian when the yielded set changes. */
+typedef PetscBool (*SlumpDualFn)(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_x[], const PetscScalar du[], const PetscScalar du_x[], const PetscReal x[], const PetscScalar constants[], PetscScalar S[]);
 
 PETSC_EXTERN PetscErrorCode SlumpRheologyCreate(MPI_Comm comm, SlumpRheology *rheo);
 PETSC_EXTERN PetscErrorCode SlumpRheologyDestroy(SlumpRheology *rheo);

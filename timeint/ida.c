@@ -328,7 +328,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
     PetscCall(SlumpSUNNonlinSolLineSearchCreate(ti->prob, X, ctx, &NLS));
     IDACHECK(IDASetNonlinearSolver(mem, NLS));
   } else if (sv) {
-    PetscCall(SlumpSUNNonlinSolStressVelocityCreate(ti->prob, X, ti->max_nonlin_iters, ctx, &NLS));
+    PetscCall(SlumpSUNNonlinSolStressVelocityCreate(ti->prob, X, ti->max_nonlin_iters, ti->sv_reuse, ctx, &NLS));
     IDACHECK(IDASetNonlinearSolver(mem, NLS));
   }
   if (ti->exact_newton && !(sv && !ti->linesearch)) {

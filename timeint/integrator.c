@@ -24,6 +24,7 @@ PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti)
   s->max_nonlin_iters = 4;
   s->nonlin_conv_coef = 0.33;
   s->restart_step     = 1.0;
+  s->sv_reuse         = PETSC_FALSE;
   s->stress_scale = 1.0;
   s->stats.h_min = PETSC_MAX_REAL;
   *ti            = s;
@@ -266,6 +267,7 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
     PetscCall(PetscOptionsEList("-ida_nonlinear_solver", "IDA's per-step nonlinear solver: newton (IDA's modified Newton) or linesearch (KINSOL, exact Jacobian, line search)", "", kinds, 2, kinds[k], &k, NULL));
     ti->linesearch = k == 1 ? PETSC_TRUE : PETSC_FALSE;
   }
+  PetscCall(PetscOptionsBool("-ida_sv_reuse_jacobian", "IDA, stress-velocity Newton: keep the factored Jacobian while cj stays within 25 % and the yielded set does not change (default false: a Jacobian at every iterate, measured cheaper)", "", ti->sv_reuse, &ti->sv_reuse, NULL));
   PetscCall(PetscOptionsBool("-ida_exact_newton", "IDA: re-assemble the Jacobian at every Newton iterate (default: IDA's modified Newton)", "", ti->exact_newton, &ti->exact_newton, NULL));
   PetscCall(PetscOptionsReal("-ida_nonlin_conv_coef", "IDA: Newton stops when the correction is below this fraction of the error tolerance", "", ti->nonlin_conv_coef, &ti->nonlin_conv_coef, NULL));
   PetscCall(PetscOptionsInt("-ida_max_nonlin_iters", "IDA: Newton iterations per step before the step is cut", "", ti->max_nonlin_iters, &ti->max_nonlin_iters, NULL));

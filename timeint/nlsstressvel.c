@@ -24,6 +24,10 @@ typedef struct {
   PetscInt     maxit;
   int          curiter;
   PetscReal    ss, oldnrm; /* IDA's convergence-rate estimate, carried between solves */
+  PetscBool    reuse;      /* keep the factored Jacobian across iterations and steps */
+  PetscBool    haveJ;
+  PetscReal    cjJ;        /* cj of the factored Jacobian */
+  long int     njac, nretry;
   long int     nits, lastits, lastfail, nconvfails;
   PetscInt     nlin;
 } SVContent;
@@ -54,32 +58,41 @@ static PetscErrorCode SVConvTest(SVContent *c, PetscReal delnrm, PetscReal tol, 
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode SVSolve_Private(SUNNonlinearSolver NLS, N_Vector y0, N_Vector ycor, N_Vector w, realtype tol, void *mem, int *status)
+/* One Newton solve of the stage from y0. fresh: a Jacobian at every
+   iterate; otherwise the factored one is kept while cj stays within 25 %
+   of its own (IDA's rule, the correction scaled by 2/(1 + cj/cj_J)) and no
+   quadrature point has changed between yielded and unyielded since it was
+   assembled (SlumpProblemDualYieldChanges). */
+static PetscErrorCode SVNewton(SVContent *c, N_Vector y0, N_Vector w, realtype tol, realtype tcur, realtype cj, PetscBool fresh, int *status)
 {
-  SVContent         *c = (SVContent *)NLS->content;
-  realtype           tcur, cj;
-  N_Vector           yypred, yppred, yyn, ypn, res;
-  void              *ud;
   KSPConvergedReason reason;
   PetscInt           its;
   PetscReal          fn;
   PetscFunctionBeginUser;
-  PetscCheck(!IDAGetNonlinearSystemData(mem, &tcur, &yypred, &yppred, &yyn, &ypn, &res, &cj, &ud), PETSC_COMM_SELF, PETSC_ERR_LIB, "IDAGetNonlinearSystemData failed");
-  PetscCall(VecWAXPY(c->beta, -cj, N_VGetVector_Petsc(yypred), N_VGetVector_Petsc(yppred)));
-  /* y0 is the initial iterate (IDA's predictor) */
   PetscCall(VecCopy(N_VGetVector_Petsc(y0), c->y));
   PetscCall(SlumpProblemDualBegin(c->prob, tcur, c->y));
-  *status     = SUN_NLS_CONV_RECVR;
-  c->lastits  = 0;
+  *status = SUN_NLS_CONV_RECVR;
   for (c->curiter = 0; c->curiter < c->maxit; ++c->curiter) {
     PetscReal delnrm;
+    PetscInt  changed = 0;
+    PetscBool assemble;
     PetscCall(VecWAXPY(c->yp, cj, c->y, c->beta));
     PetscCall(SlumpProblemResidual(c->prob, tcur, c->y, c->yp, c->f));
     PetscCall(VecNorm(c->f, NORM_INFINITY, &fn));
     if (PetscIsInfOrNanReal(fn)) break;
     PetscCall(SlumpProblemDualLinearise(c->prob, tcur, c->y));
-    PetscCall(SlumpProblemJacobian(c->prob, tcur, c->y, c->yp, cj, c->J));
-    PetscCall(KSPSetOperators(c->ksp, c->J, c->J));
+    assemble = (fresh || !c->haveJ || PetscAbsReal(cj / c->cjJ - 1.0) > 0.25) ? PETSC_TRUE : PETSC_FALSE;
+    if (!assemble) {
+      PetscCall(SlumpProblemDualYieldChanges(c->prob, &changed));
+      if (changed) assemble = PETSC_TRUE;
+    }
+    if (assemble) {
+      PetscCall(SlumpProblemJacobian(c->prob, tcur, c->y, c->yp, cj, c->J));
+      PetscCall(KSPSetOperators(c->ksp, c->J, c->J));
+      c->haveJ = PETSC_TRUE;
+      c->cjJ   = cj;
+      c->njac++;
+    }
     PetscCall(VecScale(c->f, -1.0));
     PetscCall(KSPSolve(c->ksp, c->f, c->del));
     PetscCall(KSPGetConvergedReason(c->ksp, &reason));
@@ -87,6 +100,7 @@ static PetscErrorCode SVSolve_Private(SUNNonlinearSolver NLS, N_Vector y0, N_Vec
     c->nlin += PetscMax(its, 1);
     c->lastits++;
     if (reason <= 0) break;
+    if (cj != c->cjJ) PetscCall(VecScale(c->del, 2.0 / (1.0 + cj / c->cjJ)));
     PetscCall(VecAXPY(c->y, 1.0, c->del));
     delnrm = N_VWrmsNorm(c->ndel, w);
     if (PetscIsInfOrNanReal(delnrm)) break;
@@ -96,6 +110,28 @@ static PetscErrorCode SVSolve_Private(SUNNonlinearSolver NLS, N_Vector y0, N_Vec
   }
   if (*status == SUN_NLS_CONTINUE) *status = SUN_NLS_CONV_RECVR;
   PetscCall(SlumpProblemDualEnd(c->prob, tcur, c->y, *status == SUN_NLS_SUCCESS ? PETSC_TRUE : PETSC_FALSE));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode SVSolve_Private(SUNNonlinearSolver NLS, N_Vector y0, N_Vector ycor, N_Vector w, realtype tol, void *mem, int *status)
+{
+  SVContent *c = (SVContent *)NLS->content;
+  realtype   tcur, cj;
+  N_Vector   yypred, yppred, yyn, ypn, res;
+  void      *ud;
+  PetscFunctionBeginUser;
+  PetscCheck(!IDAGetNonlinearSystemData(mem, &tcur, &yypred, &yppred, &yyn, &ypn, &res, &cj, &ud), PETSC_COMM_SELF, PETSC_ERR_LIB, "IDAGetNonlinearSystemData failed");
+  PetscCall(VecWAXPY(c->beta, -cj, N_VGetVector_Petsc(yypred), N_VGetVector_Petsc(yppred)));
+  c->lastits = 0;
+  /* y0 is the initial iterate (IDA's predictor) */
+  PetscCall(SVNewton(c, y0, w, tol, tcur, cj, c->reuse ? PETSC_FALSE : PETSC_TRUE, status));
+  if (*status != SUN_NLS_SUCCESS && c->reuse) {
+    /* a kept Jacobian may be what failed: again with a fresh one at every
+       iterate before IDA cuts the step */
+    c->ss = 20.0;
+    c->nretry++;
+    PetscCall(SVNewton(c, y0, w, tol, tcur, cj, PETSC_TRUE, status));
+  }
   if (*status == SUN_NLS_SUCCESS) PetscCall(VecWAXPY(N_VGetVector_Petsc(ycor), -1.0, N_VGetVector_Petsc(y0), c->y));
   else c->ss = 20.0; /* IDA's value after a fresh Jacobian */
   PetscFunctionReturn(0);
@@ -168,7 +204,7 @@ static int SVFree(SUNNonlinearSolver NLS)
   return SUN_NLS_SUCCESS;
 }
 
-PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem prob, Vec X, PetscInt maxit, SUNContext ctx, SUNNonlinearSolver *nls)
+PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem prob, Vec X, PetscInt maxit, PetscBool reuse, SUNContext ctx, SUNNonlinearSolver *nls)
 {
   SUNNonlinearSolver NLS;
   SVContent         *c;
@@ -180,6 +216,7 @@ PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem prob, Vec X, P
   PetscCheck(NLS && c, PETSC_COMM_SELF, PETSC_ERR_MEM, "Cannot allocate the nonlinear solver");
   c->prob  = prob;
   c->maxit = maxit;
+  c->reuse = reuse;
   c->ss    = 20.0;
   PetscCall(VecDuplicate(X, &c->y));
   PetscCall(VecDuplicate(X, &c->yp));
@@ -210,5 +247,14 @@ PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(SUNNonlinearSo
 {
   PetscFunctionBeginUser;
   *nlin = ((SVContent *)nls->content)->nlin;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSUNNonlinSolStressVelocityGetCounts(SUNNonlinearSolver nls, PetscInt *njac, PetscInt *nretry)
+{
+  SVContent *c = (SVContent *)nls->content;
+  PetscFunctionBeginUser;
+  if (njac) *njac = (PetscInt)c->njac;
+  if (nretry) *nretry = (PetscInt)c->nretry;
   PetscFunctionReturn(0);
 }

@@ -43,7 +43,7 @@ struct _n_SlumpIntegrator {
   SlumpIntegratorType  type;
   PetscReal            t0, tfinal, dtout, rtol, atol, dt, t, h_last;
   PetscInt             order_last, max_steps, max_nonlin_iters;
-  PetscBool            exact_newton, linesearch;
+  PetscBool            exact_newton, linesearch, sv_reuse;
   PetscBool            atol_auto; /* -time_atol not given: 1e-3 rtol max|u0| (ida.c) */
   PetscReal            nonlin_conv_coef;
   PetscReal            restart_step; /* first step after a between-step restart, as a fraction of the last step */
@@ -69,7 +69,8 @@ PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchCreate(SlumpProblem, Vec 
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchGetLinearIterations(SUNNonlinearSolver, PetscInt *);
 /* IDA's nonlinear solver replaced by the stress-velocity Newton (exact
    Jacobian with the plastic stress at every iterate; maxit iterations). */
-PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem, Vec X, PetscInt maxit, SUNContext, SUNNonlinearSolver *);
+PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem, Vec X, PetscInt maxit, PetscBool reuse_jacobian, SUNContext, SUNNonlinearSolver *);
+PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetCounts(SUNNonlinearSolver, PetscInt *njac, PetscInt *nretry);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(SUNNonlinearSolver, PetscInt *);
 /* -newton_linearisation primal|stress_velocity (default: stress_velocity
    when the rheology has a plastic part): *sv, and the problem set up for it. */
