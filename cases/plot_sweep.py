@@ -9,10 +9,10 @@ package gnuplot-nox, installed by cases/setup.sh).
   python3 cases/plot_sweep.py error SWEEP.csv[:LABEL] ... --x COLUMN [--curve COLUMN] [--invert-x] --out FIG.png
       arrest-time error against the exact model (arrest_error) and the wall
       time, against COLUMN (log-log), one curve per file and value of --curve.
-  python3 cases/plot_sweep.py work SWEEP.csv[:LABEL] ... [--curve COLUMN] [--error COLUMN] --out FIG.png
-      work-precision: the error column (default arrest_error) against
-      wall_time, one curve per file (and value of --curve), points in sweep
-      order.
+  python3 cases/plot_sweep.py work SWEEP.csv[:LABEL] ... [--curve COLUMN] [--error COLUMN] [--work COLUMN] --out FIG.png
+      work-precision: the error column (default arrest_error) against the
+      work column (default wall_time; e.g. res_evals), one curve per file
+      (and value of --curve), points in sweep order.
 --x stiffness stands for the regularisation's stiffness: m for the
 Papanastasiou models, 1/eps for the others. Rows whose status is not 'ok'
 are left out (and counted)."""
@@ -119,11 +119,12 @@ def plot_error(a, sets, tmp):
 
 
 def plot_work(a, sets, tmp):
-    s = ["set terminal pngcairo size 700,480 font ',10'", "set output '%s'" % a.out, "set title '%s'" % (a.title or "work-precision"), "set logscale xy",
-         "set format x '10^{%L}'", "set format y '10^{%L}'", "set xlabel 'wall time (s)'", "set ylabel '%s'" % a.error.replace("_", " "), "set key outside right"]
+    xlabel = {"wall_time": "wall time (s)", "res_evals": "residual evaluations"}.get(a.work, a.work.replace("_", " "))
+    s = ["set terminal pngcairo size 760,560 font ',10'", "set output '%s'" % a.out, "set title '%s'" % (a.title or "work-precision"), "set logscale xy",
+         "set format x '10^{%L}'", "set format y '10^{%L}'", "set xlabel '%s'" % xlabel, "set ylabel '%s'" % a.error.replace("_", " "), "set key below"]
     plots = []
     for i, (label, rows) in enumerate(curves(a, sets)):
-        pts = [(num(r, "wall_time"), num(r, a.error)) for r in rows if num(r, "wall_time") and num(r, a.error)]
+        pts = [(num(r, a.work), num(r, a.error)) for r in rows if num(r, a.work) and num(r, a.error)]
         if pts:
             plots.append("'%s' u 1:2 w lp pt %d lc %d title '%s'" % (write_data(tmp, "w%d" % i, pts), 4 + i % 10, i + 1, label.replace("_", "\\_")))
     s.append("plot " + (", ".join(plots) if plots else "0 notitle"))
@@ -136,6 +137,7 @@ def main():
     ap.add_argument("csv", nargs="+", help="sweep.csv[:label]")
     ap.add_argument("--x", help="swept column on the x axis (arrest, error)")
     ap.add_argument("--xlabel")
+    ap.add_argument("--work", default="wall_time", help="work column of the work-precision plot (wall_time, res_evals, ...)")
     ap.add_argument("--invert-x", action="store_true", help="plot 1/x (e.g. 1/eps next to m)")
     ap.add_argument("--panel", help="one panel per value of this column (arrest)")
     ap.add_argument("--curve", help="one curve per value of this column (error, work)")

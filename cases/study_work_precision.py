@@ -11,8 +11,9 @@ residual evaluations BDF2 / IDA at 1 % accuracy to docs/studies/wp_<scene>.txt.
 
 Methods: ida (IDA with the default stress-velocity Newton), ida_primal
 (IDA's modified Newton on the primal tangent), ida_linesearch, bdf2 (fixed
-step, KINSOL with line search, stress-velocity tangent), bdf2_primal and
-bdf2_full_newton (stress-velocity, full Newton steps: -newton_linesearch 0).
+step, KINSOL, the default stress-velocity tangent with full Newton steps),
+bdf2_primal (primal tangent, KINSOL's line search, the default with it) and
+bdf2_linesearch (stress-velocity with the line search).
 IDA runs use the default absolute tolerance (1e-3 rtol max|u(0)|).
 
 usage: python3 cases/study_work_precision.py couette|duct|poiseuille [--ranks 2]
@@ -67,7 +68,7 @@ def main():
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--docs", default=os.path.join(HERE, "..", "docs"))
     ap.add_argument("--work", default="out/study_wp")
-    ap.add_argument("--methods", default="ida,ida_primal,bdf2,bdf2_primal,bdf2_full_newton", help="comma-separated subset of ida, ida_primal, ida_linesearch, bdf2, bdf2_primal, bdf2_full_newton")
+    ap.add_argument("--methods", default="ida,ida_primal,bdf2,bdf2_primal,bdf2_linesearch", help="comma-separated subset of ida, ida_primal, ida_linesearch, bdf2, bdf2_primal, bdf2_linesearch")
     ap.add_argument("--meshes", default=None, help="the meshes of the sweep (default: the set-up's)")
     ap.add_argument("--reuse", action="store_true", help="keep the CSV files of methods already in docs/studies")
     a = ap.parse_args()
@@ -92,7 +93,7 @@ def main():
                ("ida_linesearch", "time_rtol", s["rtols"], ["-ida_nonlinear_solver", "linesearch"]),
                ("bdf2", "time_dt", s["dts"], ["-time_integrator", "bdf2"]),
                ("bdf2_primal", "time_dt", s["dts"], ["-time_integrator", "bdf2", "-newton_linearisation", "primal"]),
-               ("bdf2_full_newton", "time_dt", s["dts"], ["-time_integrator", "bdf2", "-newton_linesearch", "0"]))
+               ("bdf2_linesearch", "time_dt", s["dts"], ["-time_integrator", "bdf2", "-newton_linesearch", "1"]))
     for method, opt, values, extra in methods:
         if method not in a.methods.split(","):
             continue
@@ -113,9 +114,10 @@ def main():
                 r["arrest_error"] = "%.6e" % (abs(float(r["t_arrest"]) - ref) / ref) if r["status"] == "ok" and r["t_arrest"] else ""
         write(dst, rows)
         files[method] = dst
-    labels = {"ida": "IDA stress-velocity", "ida_primal": "IDA primal", "ida_linesearch": "IDA line search", "bdf2": "BDF2 fixed (stress-velocity)", "bdf2_primal": "BDF2 fixed (primal)", "bdf2_full_newton": "BDF2 fixed (stress-velocity, no line search)"}
-    subprocess.run([sys.executable, os.path.join(HERE, "plot_sweep.py"), "work"] + [files[m] + ":" + labels[m] for m in files] + [ "--curve", s["mesh"],
-                    "--title", "%s: arrest-time error against wall time" % s["title"], "--out", os.path.join(a.docs, "wp_%s.png" % a.case)], check=True)
+    labels = {"ida": "IDA stress-velocity", "ida_primal": "IDA primal", "ida_linesearch": "IDA line search", "bdf2": "BDF2 fixed (stress-velocity)", "bdf2_primal": "BDF2 fixed (primal, line search)", "bdf2_linesearch": "BDF2 fixed (stress-velocity, line search)"}
+    for work, suffix, what in (("res_evals", "", "residual evaluations"), ("wall_time", "_time", "wall time")):
+        subprocess.run([sys.executable, os.path.join(HERE, "plot_sweep.py"), "work"] + [files[m] + ":" + labels[m] for m in files] + ["--curve", s["mesh"], "--work", work,
+                        "--title", "%s: arrest-time error against %s" % (s["title"], what), "--out", os.path.join(a.docs, "wp_%s%s.png" % (a.case, suffix))], check=True)
     # the cheapest run reaching 1 % for each method and mesh, and the ratio
     lines = ["%s: cheapest run (fewest residual evaluations) with arrest-time error <= 1e-2 (error against %s)" % (s["scene"], "the reference run " + " ".join(s["reference"]) if ref else "the exact model's arrest time"),
              "%-8s %-6s %-10s %-12s %-10s %-10s %-8s" % ("mesh", "method", "parameter", "error", "res_evals", "wall_time", "steps")]
@@ -128,11 +130,11 @@ def main():
             if key not in best or int(r["res_evals"]) < int(best[key]["res_evals"]):
                 best[key] = r
     for mesh in s["meshes"].split(","):
-        for method in ("ida", "ida_primal", "ida_linesearch", "bdf2", "bdf2_primal", "bdf2_full_newton"):
+        for method in ("ida", "ida_primal", "ida_linesearch", "bdf2", "bdf2_primal", "bdf2_linesearch"):
             r = best.get((mesh, method))
             if r:
                 lines.append("%-8s %-14s %-10s %-12s %-10s %-10s %-8s" % (mesh, method, r["time_dt" if method.startswith("bdf2") else "time_rtol"], r["arrest_error"], r["res_evals"], r["wall_time"], r["steps"]))
-        fixed = [best[(mesh, m)] for m in ("bdf2", "bdf2_primal", "bdf2_full_newton") if (mesh, m) in best]
+        fixed = [best[(mesh, m)] for m in ("bdf2", "bdf2_primal", "bdf2_linesearch") if (mesh, m) in best]
         if fixed:
             cheapest = min(int(r["res_evals"]) for r in fixed)
             for m in ("ida", "ida_primal", "ida_linesearch"):

@@ -14,7 +14,8 @@ PetscErrorCode SlumpProblemSetStressVelocity(SlumpProblem prob, PetscBool on)
   prob->dualInSolve = PETSC_FALSE;
   prob->dualSaved   = PETSC_FALSE;
   prob->dualLinSet  = PETSC_FALSE;
-  if (!on || prob->dual) PetscFunctionReturn(0);
+  if (!on || prob->dual)
+    PetscFunctionReturn(0);
   PetscCall(SlumpAssemblyGetSizes(prob, &ncell, &nq, &dim));
   prob->dualNq = nq;
   prob->dualNs = dim * dim;
@@ -46,9 +47,11 @@ PetscErrorCode SlumpProblemDualBegin(SlumpProblem prob, PetscReal t, Vec X)
 {
   PetscInt n;
   PetscFunctionBeginUser;
-  if (!prob->dualOn) PetscFunctionReturn(0);
+  if (!prob->dualOn)
+    PetscFunctionReturn(0);
   PetscCall(DualSize(prob, &n));
-  if (prob->dualSaved) PetscCall(PetscArraycpy(prob->dual, prob->dualSave, n));
+  if (prob->dualSaved)
+    PetscCall(PetscArraycpy(prob->dual, prob->dualSave, n));
   else {
     PetscCall(SlumpProblemFillLocal(prob, t, X));
     PetscCall(SlumpAssembleDual(prob, t, prob->locX, NULL, prob->dual, prob->dualYield));
@@ -74,8 +77,10 @@ static PetscErrorCode DualStep(SlumpProblem prob, PetscReal t, Vec X)
 PetscErrorCode SlumpProblemDualLinearise(SlumpProblem prob, PetscReal t, Vec X)
 {
   PetscFunctionBeginUser;
-  if (!prob->dualOn || !prob->dualInSolve) PetscFunctionReturn(0);
-  if (prob->dualLinSet) PetscCall(DualStep(prob, t, X));
+  if (!prob->dualOn || !prob->dualInSolve)
+    PetscFunctionReturn(0);
+  if (prob->dualLinSet)
+    PetscCall(DualStep(prob, t, X));
   PetscCall(VecCopy(X, prob->dualLin));
   prob->dualLinSet = PETSC_TRUE;
   PetscFunctionReturn(0);
@@ -85,9 +90,11 @@ PetscErrorCode SlumpProblemDualEnd(SlumpProblem prob, PetscReal t, Vec X, PetscB
 {
   PetscInt n;
   PetscFunctionBeginUser;
-  if (!prob->dualOn || !prob->dualInSolve) PetscFunctionReturn(0);
+  if (!prob->dualOn || !prob->dualInSolve)
+    PetscFunctionReturn(0);
   if (converged) {
-    if (prob->dualLinSet) PetscCall(DualStep(prob, t, X));
+    if (prob->dualLinSet)
+      PetscCall(DualStep(prob, t, X));
     PetscCall(DualSize(prob, &n));
     PetscCall(PetscArraycpy(prob->dualSave, prob->dual, n));
     prob->dualSaved = PETSC_TRUE;
@@ -120,9 +127,11 @@ PetscErrorCode SlumpProblemDualYieldChanges(SlumpProblem prob, PetscInt *nchange
   PetscInt ncell, nq, dim, n = 0;
   PetscFunctionBeginUser;
   *nchanged = 0;
-  if (!prob->dualOn) PetscFunctionReturn(0);
+  if (!prob->dualOn)
+    PetscFunctionReturn(0);
   PetscCall(SlumpAssemblyGetSizes(prob, &ncell, &nq, &dim));
-  for (PetscInt i = 0; i < ncell * nq; ++i) n += prob->dualYield[i] != prob->dualYieldJ[i] ? 1 : 0;
+  for (PetscInt i = 0; i < ncell * nq; ++i)
+    n += prob->dualYield[i] != prob->dualYieldJ[i] ? 1 : 0;
   PetscCall(MPIU_Allreduce(&n, nchanged, 1, MPIU_INT, MPI_SUM, prob->comm));
   PetscFunctionReturn(0);
 }

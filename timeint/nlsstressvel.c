@@ -26,7 +26,7 @@ typedef struct {
   PetscReal    ss, oldnrm; /* IDA's convergence-rate estimate, carried between solves */
   PetscBool    reuse;      /* keep the factored Jacobian across iterations and steps */
   PetscBool    haveJ;
-  PetscReal    cjJ;        /* cj of the factored Jacobian */
+  PetscReal    cjJ; /* cj of the factored Jacobian */
   long int     njac, nretry;
   long int     nits, lastits, lastfail, nconvfails;
   PetscInt     nlin;
@@ -45,7 +45,8 @@ static PetscErrorCode SVConvTest(SVContent *c, PetscReal delnrm, PetscReal tol, 
   *status = SUN_NLS_CONTINUE;
   if (m == 0) {
     c->oldnrm = delnrm;
-    if (delnrm <= 1e-4 * tol) *status = SUN_NLS_SUCCESS;
+    if (delnrm <= 1e-4 * tol)
+      *status = SUN_NLS_SUCCESS;
   } else {
     const PetscReal rate = PetscPowReal(delnrm / c->oldnrm, 1.0 / m);
     if (rate > 0.9) {
@@ -54,7 +55,8 @@ static PetscErrorCode SVConvTest(SVContent *c, PetscReal delnrm, PetscReal tol, 
     }
     c->ss = rate / (1.0 - rate);
   }
-  if (*status == SUN_NLS_CONTINUE && c->ss * delnrm <= tol) *status = SUN_NLS_SUCCESS;
+  if (*status == SUN_NLS_CONTINUE && c->ss * delnrm <= tol)
+    *status = SUN_NLS_SUCCESS;
   PetscFunctionReturn(0);
 }
 
@@ -79,12 +81,14 @@ static PetscErrorCode SVNewton(SVContent *c, N_Vector y0, N_Vector w, realtype t
     PetscCall(VecWAXPY(c->yp, cj, c->y, c->beta));
     PetscCall(SlumpProblemResidual(c->prob, tcur, c->y, c->yp, c->f));
     PetscCall(VecNorm(c->f, NORM_INFINITY, &fn));
-    if (PetscIsInfOrNanReal(fn)) break;
+    if (PetscIsInfOrNanReal(fn))
+      break;
     PetscCall(SlumpProblemDualLinearise(c->prob, tcur, c->y));
     assemble = (fresh || !c->haveJ || PetscAbsReal(cj / c->cjJ - 1.0) > 0.25) ? PETSC_TRUE : PETSC_FALSE;
     if (!assemble) {
       PetscCall(SlumpProblemDualYieldChanges(c->prob, &changed));
-      if (changed) assemble = PETSC_TRUE;
+      if (changed)
+        assemble = PETSC_TRUE;
     }
     if (assemble) {
       PetscCall(SlumpProblemJacobian(c->prob, tcur, c->y, c->yp, cj, c->J));
@@ -99,16 +103,21 @@ static PetscErrorCode SVNewton(SVContent *c, N_Vector y0, N_Vector w, realtype t
     PetscCall(KSPGetIterationNumber(c->ksp, &its));
     c->nlin += PetscMax(its, 1);
     c->lastits++;
-    if (reason <= 0) break;
-    if (cj != c->cjJ) PetscCall(VecScale(c->del, 2.0 / (1.0 + cj / c->cjJ)));
+    if (reason <= 0)
+      break;
+    if (cj != c->cjJ)
+      PetscCall(VecScale(c->del, 2.0 / (1.0 + cj / c->cjJ)));
     PetscCall(VecAXPY(c->y, 1.0, c->del));
     delnrm = N_VWrmsNorm(c->ndel, w);
-    if (PetscIsInfOrNanReal(delnrm)) break;
+    if (PetscIsInfOrNanReal(delnrm))
+      break;
     PetscCall(SVConvTest(c, delnrm, tol, c->curiter, status));
-    if (*status != SUN_NLS_CONTINUE) break;
+    if (*status != SUN_NLS_CONTINUE)
+      break;
     *status = SUN_NLS_CONV_RECVR;
   }
-  if (*status == SUN_NLS_CONTINUE) *status = SUN_NLS_CONV_RECVR;
+  if (*status == SUN_NLS_CONTINUE)
+    *status = SUN_NLS_CONV_RECVR;
   PetscCall(SlumpProblemDualEnd(c->prob, tcur, c->y, *status == SUN_NLS_SUCCESS ? PETSC_TRUE : PETSC_FALSE));
   PetscFunctionReturn(0);
 }
@@ -132,8 +141,10 @@ static PetscErrorCode SVSolve_Private(SUNNonlinearSolver NLS, N_Vector y0, N_Vec
     c->nretry++;
     PetscCall(SVNewton(c, y0, w, tol, tcur, cj, PETSC_TRUE, status));
   }
-  if (*status == SUN_NLS_SUCCESS) PetscCall(VecWAXPY(N_VGetVector_Petsc(ycor), -1.0, N_VGetVector_Petsc(y0), c->y));
-  else c->ss = 20.0; /* IDA's value after a fresh Jacobian */
+  if (*status == SUN_NLS_SUCCESS)
+    PetscCall(VecWAXPY(N_VGetVector_Petsc(ycor), -1.0, N_VGetVector_Petsc(y0), c->y));
+  else
+    c->ss = 20.0; /* IDA's value after a fresh Jacobian */
   PetscFunctionReturn(0);
 }
 
@@ -141,7 +152,8 @@ static int SVSolve(SUNNonlinearSolver NLS, N_Vector y0, N_Vector ycor, N_Vector 
 {
   SVContent *c      = (SVContent *)NLS->content;
   int        status = SUN_NLS_CONV_RECVR;
-  if (SlumpSundialsStatus(SVSolve_Private(NLS, y0, ycor, w, tol, mem, &status))) return SUN_NLS_EXT_FAIL;
+  if (SlumpSundialsStatus(SVSolve_Private(NLS, y0, ycor, w, tol, mem, &status)))
+    return SUN_NLS_EXT_FAIL;
   c->nits += c->lastits;
   c->lastfail = status == SUN_NLS_SUCCESS ? 0 : 1;
   c->nconvfails += c->lastfail;
@@ -186,7 +198,8 @@ static int SVGetNumConvFails(SUNNonlinearSolver NLS, long int *n)
 }
 static int SVFree(SUNNonlinearSolver NLS)
 {
-  if (!NLS) return SUN_NLS_SUCCESS;
+  if (!NLS)
+    return SUN_NLS_SUCCESS;
   if (NLS->content) {
     SVContent *c = (SVContent *)NLS->content;
     (void)KSPDestroy(&c->ksp);
@@ -254,7 +267,9 @@ PetscErrorCode SlumpSUNNonlinSolStressVelocityGetCounts(SUNNonlinearSolver nls, 
 {
   SVContent *c = (SVContent *)nls->content;
   PetscFunctionBeginUser;
-  if (njac) *njac = (PetscInt)c->njac;
-  if (nretry) *nretry = (PetscInt)c->nretry;
+  if (njac)
+    *njac = (PetscInt)c->njac;
+  if (nretry)
+    *nretry = (PetscInt)c->nretry;
   PetscFunctionReturn(0);
 }
