@@ -13,7 +13,11 @@
   steady   the steady duct (Mosolov problem) at Bn 0.05 on 40 x 40 cells,
            m = 1e2 ... 1e8: Newton iterations of one KINSOL solve from rest
            for each linearisation, with and without KINSOL's line search,
-           and with continuation in m from 1e2 (factor 10).
+           and with continuation in m from 1e2 (factor 10, each
+           linearisation's default globalisation: line search for the
+           primal, full steps for the stress-velocity Newton), and from a
+           viscous start: one solve at m = 1e-3 (the fluid is then nearly
+           Newtonian, eta_p + 1e-3 tau0), then the target m.
 
 Writes <out>/sv_stages.csv and <out>/sv_steady.csv and prints the tables of
 docs/arrest.md.
@@ -78,18 +82,19 @@ def stages(a):
 
 def steady(a):
     rows = []
-    print("%-6s %-16s %-12s %8s %10s" % ("m", "linearisation", "globalisation", "Newton", "status"), flush=True)
+    print("%-6s %-16s %-13s %8s %10s" % ("m", "linearisation", "globalisation", "Newton", "status"), flush=True)
     base = ["-bn", "0.05", "-mesh_nx", "40", "-mesh_ny", "40", "-newton_max_it", "200"]
     for m in ("1e2", "1e3", "1e4", "1e5", "1e6", "1e7", "1e8"):
         for lin in ("primal", "stress_velocity"):
-            for glob, extra in (("line search", []), ("none", ["-newton_linesearch", "0"]), ("continuation", ["-steady_continuation_start", "1e2"])):
+            for glob, extra in (("line search", ["-newton_linesearch", "1"]), ("full steps", ["-newton_linesearch", "0"]), ("continuation", ["-steady_continuation_start", "1e2"]),
+                                ("viscous start", ["-steady_continuation_start", "1e-3", "-steady_continuation_factor", "1e12"])):
                 p, s, st = run(a.slump, "duct", base + ["-rheology_papanastasiou_m", m, "-newton_linearisation", lin] + extra, timeout=600)
                 its = [int(l.split("Newton")[1].split()[0]) for l in p.stdout.splitlines() if l.startswith("steady:")]
                 ok = p.returncode == 0
                 total = sum(its)
                 r = dict(m=m, linearisation=lin, globalisation=glob, newton=its[-1] if its else -1, newton_total=total, solves=len(its), status="ok" if ok else "not converged")
                 rows.append(r)
-                print("%-6s %-16s %-12s %8s %10s" % (m, lin, glob, ("%d" % r["newton"]) + (" (%d in %d solves)" % (total, len(its)) if len(its) > 1 else ""), r["status"]), flush=True)
+                print("%-6s %-16s %-13s %8s %10s" % (m, lin, glob, ("%d" % r["newton"]) + (" (%d in %d solves)" % (total, len(its)) if len(its) > 1 else ""), r["status"]), flush=True)
     write(os.path.join(a.out, "sv_steady.csv"), rows)
 
 
