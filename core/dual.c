@@ -34,6 +34,14 @@ PetscErrorCode SlumpProblemGetStressVelocity(SlumpProblem prob, PetscBool *on)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemGetStressVelocityOption(SlumpProblem prob, PetscBool *wanted)
+{
+  PetscFunctionBeginUser;
+  if (prob->dualWantedSet) *wanted = prob->dualWanted;
+  else PetscCall(SlumpRheologyHasPlasticPart(prob->rheo, wanted)); /* options not read: the default */
+  PetscFunctionReturn(0);
+}
+
 static PetscErrorCode DualSize(SlumpProblem prob, PetscInt *n)
 {
   PetscInt ncell, nq, dim;

@@ -394,6 +394,20 @@ PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob)
   prob->pressureDegree = prob->velocityDegree - 1;
   PetscCall(SlumpProblemSetDensity(prob, rho));
   PetscCall(SlumpRheologySetFromOptions(prob->rheo));
+  {
+    /* the Newton linearisation of the yield term (timeint/ applies it at
+       every nonlinear solve): stress-velocity by default for a yield law */
+    const char *kinds[] = {"primal", "stress_velocity"};
+    PetscBool   plastic;
+    PetscInt    k;
+    PetscCall(SlumpRheologyHasPlasticPart(prob->rheo, &plastic));
+    k = plastic ? 1 : 0;
+    PetscOptionsBegin(prob->comm, NULL, "Newton linearisation", "SlumpProblem");
+    PetscCall(PetscOptionsEList("-newton_linearisation", "Newton's tangent for yield-stress laws: primal, or stress_velocity (the plastic stress as a quadrature-point variable; the default for models with a yield term)", "SlumpProblemSetStressVelocity", kinds, 2, kinds[k], &k, NULL));
+    PetscOptionsEnd();
+    prob->dualWanted    = k == 1 ? PETSC_TRUE : PETSC_FALSE;
+    prob->dualWantedSet = PETSC_TRUE;
+  }
   PetscFunctionReturn(0);
 }
 

@@ -283,6 +283,10 @@ PETSC_EXTERN PetscErrorCode SlumpProblemGetCounters(SlumpProblem prob, PetscInt 
    Jacobian is the primal one. */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetStressVelocity(SlumpProblem prob, PetscBool on);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetStressVelocity(SlumpProblem prob, PetscBool *on);
+/* The linearisation asked for by -newton_linearisation (read by
+   SlumpProblemSetFromOptions; default stress_velocity for a model with a
+   plastic part, primal otherwise); the integrators apply it. */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetStressVelocityOption(SlumpProblem prob, PetscBool *wanted);
 PETSC_EXTERN PetscErrorCode SlumpProblemDualBegin(SlumpProblem prob, PetscReal t, Vec X);
 PETSC_EXTERN PetscErrorCode SlumpProblemDualLinearise(SlumpProblem prob, PetscReal t, Vec X);
 PETSC_EXTERN PetscErrorCode SlumpProblemDualEnd(SlumpProblem prob, PetscReal t, Vec X, PetscBool converged);

@@ -77,6 +77,7 @@ struct _n_SlumpProblem {
   /* stress-velocity Newton (SlumpProblemSetStressVelocity): the plastic
      stress S at every (local cell, quadrature point), dualNs values each;
      used by the Jacobian between SlumpProblemDualBegin and ...End */
+  PetscBool     dualWanted, dualWantedSet; /* -newton_linearisation stress_velocity (SlumpProblemSetFromOptions) */
   PetscBool     dualOn, dualInSolve, dualSaved, dualLinSet;
   PetscInt      dualNs, dualNq;
   PetscScalar  *dual, *dualSave;

@@ -220,18 +220,8 @@ PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *st
 
 PetscErrorCode SlumpLinearisationSetUp(SlumpProblem prob, MPI_Comm comm, PetscBool *sv)
 {
-  const char   *kinds[] = {"primal", "stress_velocity"};
-  SlumpRheology rheo;
-  PetscBool     plastic = PETSC_FALSE;
-  PetscInt      k;
   PetscFunctionBeginUser;
-  PetscCall(SlumpProblemGetRheology(prob, &rheo));
-  if (rheo) PetscCall(SlumpRheologyHasPlasticPart(rheo, &plastic));
-  k = plastic ? 1 : 0;
-  PetscOptionsBegin(comm, NULL, "Newton linearisation", "");
-  PetscCall(PetscOptionsEList("-newton_linearisation", "Newton's tangent for yield-stress laws: primal, or stress_velocity (the plastic stress as a quadrature-point variable; default for models with a yield term)", "", kinds, 2, kinds[k], &k, NULL));
-  PetscOptionsEnd();
-  *sv = k == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(SlumpProblemGetStressVelocityOption(prob, sv));
   PetscCall(SlumpProblemSetStressVelocity(prob, *sv));
   PetscFunctionReturn(0);
 }

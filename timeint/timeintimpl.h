@@ -72,8 +72,8 @@ PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchGetLinearIterations(SUNNo
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem, Vec X, PetscInt maxit, PetscBool reuse_jacobian, SUNContext, SUNNonlinearSolver *);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetCounts(SUNNonlinearSolver, PetscInt *njac, PetscInt *nretry);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(SUNNonlinearSolver, PetscInt *);
-/* -newton_linearisation primal|stress_velocity (default: stress_velocity
-   when the rheology has a plastic part): *sv, and the problem set up for it. */
+/* The problem set up for the linearisation -newton_linearisation asked for
+   (SlumpProblemGetStressVelocityOption): *sv. */
 PETSC_INTERN PetscErrorCode SlumpLinearisationSetUp(SlumpProblem, MPI_Comm, PetscBool *sv);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator, Vec);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator, Vec);
