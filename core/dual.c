@@ -38,7 +38,10 @@ PetscErrorCode SlumpProblemGetStressVelocityOption(SlumpProblem prob, PetscBool 
 {
   PetscFunctionBeginUser;
   if (prob->dualWantedSet) *wanted = prob->dualWanted;
-  else PetscCall(SlumpRheologyHasPlasticPart(prob->rheo, wanted)); /* options not read: the default */
+  else { /* options not read: the default */
+    PetscCall(SlumpRheologyHasPlasticPart(prob->rheo, wanted));
+    if (prob->petscAssembly) *wanted = PETSC_FALSE;
+  }
   PetscFunctionReturn(0);
 }
 

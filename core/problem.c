@@ -401,9 +401,9 @@ PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob)
     PetscBool   plastic;
     PetscInt    k;
     PetscCall(SlumpRheologyHasPlasticPart(prob->rheo, &plastic));
-    k = plastic ? 1 : 0;
+    k = (plastic && !prob->petscAssembly) ? 1 : 0; /* PETSc's cell loop cannot hand S to the kernels */
     PetscOptionsBegin(prob->comm, NULL, "Newton linearisation", "SlumpProblem");
-    PetscCall(PetscOptionsEList("-newton_linearisation", "Newton's tangent for yield-stress laws: primal, or stress_velocity (the plastic stress as a quadrature-point variable; the default for models with a yield term)", "SlumpProblemSetStressVelocity", kinds, 2, kinds[k], &k, NULL));
+    PetscCall(PetscOptionsEList("-newton_linearisation", "Newton's tangent for yield-stress laws: primal, or stress_velocity (the plastic stress as a quadrature-point variable; the default for models with a yield term, with -assembly slump)", "SlumpProblemSetStressVelocity", kinds, 2, kinds[k], &k, NULL));
     PetscOptionsEnd();
     prob->dualWanted    = k == 1 ? PETSC_TRUE : PETSC_FALSE;
     prob->dualWantedSet = PETSC_TRUE;
