@@ -633,7 +633,8 @@ def test_arrest_convergence():
     """Poiseuille cessation (Bn = 0.5): as Papanastasiou m grows 1e2 ... 1e6 the
     arrest time of every criterion (mean and max shear rate < 1e-3, kinetic
     energy < 1e-6 x initial, yielded fraction < 1e-3) converges: successive
-    differences shrink, the last one below 2e-4 relative (yielded fraction:
+    differences shrink until they reach the temporal error (1e-3 relative),
+    the last one below 2e-4 relative (yielded fraction:
     1.3e-4, the slowest; mean shear rate 6e-6); for m >= 1e3 every
     arrest lies below the energy bound (at m = 1e2 the soft model creeps past
     the exact model's bound: measured 0.1795 > 0.1779 for kinetic energy)."""
@@ -655,8 +656,12 @@ def test_arrest_convergence():
         t = times[n]
         diffs = [abs(t[i + 1] - t[i]) for i in range(len(t) - 1)]
         print("%-24s %s  differences %s" % (n, " ".join("%.6f" % x for x in t), " ".join("%.1e" % x for x in diffs)))
-        if any(diffs[i + 1] >= diffs[i] for i in range(len(diffs) - 1)) or diffs[-1] > 2e-4 * t[-1]:
-            fail("%s: successive differences expected to shrink to < 2e-4 relative, got %s" % (n, diffs))
+        # differences below 1e-3 relative are at the level of the temporal
+        # error (rtol 1e-4): there they need not shrink (max_shear_rate at
+        # m = 1e3, 1e4, 1e5: 0.148327, 0.148262, 0.148340 at rtol 1e-4 and
+        # 0.148327, 0.148222, 0.148300 at 1e-5, both linearisations alike)
+        if any(diffs[i + 1] >= diffs[i] and diffs[i + 1] > 1e-3 * t[-1] for i in range(len(diffs) - 1)) or diffs[-1] > 2e-4 * t[-1]:
+            fail("%s: successive differences expected to shrink (down to the temporal error, 1e-3 relative) and the last to be < 2e-4 relative, got %s" % (n, diffs))
 
 
 def test_ida_linesearch():
