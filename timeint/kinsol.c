@@ -18,7 +18,7 @@ struct _n_SlumpImplicitSolver {
   PetscReal       t, alpha, fnormtol, fnormrtol, maxstep, fref;
   Vec             beta;
   PetscInt        maxit;
-  PetscBool       linesearch;
+  PetscBool       linesearch, linesearch_set;
   SlumpStats      stats;
   PetscReal       hist[128]; /* max|F| at each Newton iterate of the last solve */
   PetscInt        nhist;
@@ -80,23 +80,13 @@ PetscErrorCode SlumpImplicitSolverCreate(SlumpProblem prob, Vec X, SlumpImplicit
   s->fnormrtol = 1e-9;
   s->maxit     = 50;
   s->maxstep   = 1e12;
-  /* KINSOL's line search on |F|^2 suits the primal Newton; the
-     stress-velocity direction is not a descent direction of that merit
-     function (steady duct, Bn 0.05, 40 x 40: the line search failed at
-     m >= 1e7 where full steps converged in 24 and 32 iterations; fixed-step
-     BDF2 on couette_cessation dt 5e-3: 269 residual evaluations with full
-     steps, the line search failed) */
-  {
-    PetscBool sv;
-    PetscCall(SlumpProblemGetStressVelocity(prob, &sv));
-    s->linesearch = sv ? PETSC_FALSE : PETSC_TRUE;
-  }
+  s->linesearch = PETSC_TRUE;
   PetscOptionsBegin(s->comm, NULL, "Newton (KINSOL)", "SlumpImplicitSolver");
   PetscCall(PetscOptionsReal("-newton_atol", "Absolute tolerance on max |F|", "", s->fnormtol, &s->fnormtol, NULL));
   PetscCall(PetscOptionsReal("-newton_rtol", "Tolerance on max |F| relative to its initial value", "", s->fnormrtol, &s->fnormrtol, NULL));
   PetscCall(PetscOptionsReal("-newton_max_step", "Largest scaled Newton step (KINSOL's default is 1 from a zero guess)", "", s->maxstep, &s->maxstep, NULL));
   PetscCall(PetscOptionsInt("-newton_max_it", "Maximum Newton iterations per solve", "", s->maxit, &s->maxit, NULL));
-  PetscCall(PetscOptionsBool("-newton_linesearch", "KINSOL's line search on |F| (default: on with -newton_linearisation primal, off with stress_velocity)", "", s->linesearch, &s->linesearch, NULL));
+  PetscCall(PetscOptionsBool("-newton_linesearch", "KINSOL's line search on |F| (default: on, except in fixed-step BDF2 stages with the stress-velocity Newton)", "", s->linesearch, &s->linesearch, &s->linesearch_set));
   PetscOptionsEnd();
   PetscCheck(s->fnormtol > 0 && s->fnormrtol >= 0, s->comm, PETSC_ERR_USER_INPUT, "-newton_atol must be positive and -newton_rtol non-negative");
   PetscCheck(s->maxit > 0, s->comm, PETSC_ERR_USER_INPUT, "-newton_max_it must be a positive integer");
@@ -147,6 +137,13 @@ PetscErrorCode SlumpImplicitSolverDestroy(SlumpImplicitSolver *solver)
   PetscCall(VecDestroy(&s->work));
   SUNContext_Free(&s->sunctx);
   PetscCall(PetscFree(*solver));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpImplicitSolverSetDefaultLineSearch(SlumpImplicitSolver s, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  if (!s->linesearch_set) s->linesearch = on;
   PetscFunctionReturn(0);
 }
 

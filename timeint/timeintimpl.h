@@ -34,6 +34,8 @@ PETSC_INTERN PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, Pets
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetHistory(SlumpImplicitSolver s, PetscInt *n, const PetscReal **hist);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *stats);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverSetTolerance(SlumpImplicitSolver s, PetscReal fnormtol);
+/* KINSOL's line search unless -newton_linesearch was given (default on). */
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverSetDefaultLineSearch(SlumpImplicitSolver s, PetscBool on);
 /* For the next solve only: the relative tolerance -newton_rtol applies to
    max(max|F(X0)|, fref) instead of max|F(X0)| (X0 the initial iterate) */
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverSetResidualScale(SlumpImplicitSolver s, PetscReal fref);
