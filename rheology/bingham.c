@@ -51,15 +51,9 @@ static inline void SimpleKernel(const PetscScalar prm[], PetscReal g, PetscReal 
 }
 
 /* Plastic parts (slumprheology.h): tau_y = tau0, R the regularised 1/g. */
-#define BINGHAM_PLASTIC(NAME, KIND) \
-  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR) \
-  { \
-    *ty = PetscRealPart(prm[1]); \
-    SlumpYieldShape(KIND, PetscRealPart(prm[2]), g, R, dR); \
-  }
-BINGHAM_PLASTIC(PapanastasiouPlastic, SLUMP_REG_PAPANASTASIOU)
-BINGHAM_PLASTIC(BercovierPlastic, SLUMP_REG_BERCOVIER)
-BINGHAM_PLASTIC(SimplePlastic, SLUMP_REG_SIMPLE)
+SLUMP_DEFINE_PLASTIC_CONSTANT(PapanastasiouPlastic, SLUMP_REG_PAPANASTASIOU, 1, 2)
+SLUMP_DEFINE_PLASTIC_CONSTANT(BercovierPlastic, SLUMP_REG_BERCOVIER, 1, 2)
+SLUMP_DEFINE_PLASTIC_CONSTANT(SimplePlastic, SLUMP_REG_SIMPLE, 1, 2)
 SLUMP_RHEOLOGY_DEFINE_POINTWISE(Papanastasiou, PapanastasiouKernel, PapanastasiouPlastic)
 SLUMP_RHEOLOGY_DEFINE_POINTWISE(Bercovier, BercovierKernel, BercovierPlastic)
 SLUMP_RHEOLOGY_DEFINE_POINTWISE(BinghamSimple, SimpleKernel, SimplePlastic)

@@ -29,15 +29,9 @@ HB_KERNEL(HBSimpleKernel, SLUMP_REG_SIMPLE)
 HB_KERNEL(HBBercovierKernel, SLUMP_REG_BERCOVIER)
 HB_KERNEL(HBPapanastasiouKernel, SLUMP_REG_PAPANASTASIOU)
 /* Plastic parts: tau_y = tau0 and the regularised 1/g of the yield term. */
-#define HB_PLASTIC(NAME, KIND) \
-  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR) \
-  { \
-    *ty = PetscRealPart(prm[2]); \
-    SlumpYieldShape(KIND, PetscRealPart(prm[3]), g, R, dR); \
-  }
-HB_PLASTIC(HBSimplePlastic, SLUMP_REG_SIMPLE)
-HB_PLASTIC(HBBercovierPlastic, SLUMP_REG_BERCOVIER)
-HB_PLASTIC(HBPapanastasiouPlastic, SLUMP_REG_PAPANASTASIOU)
+SLUMP_DEFINE_PLASTIC_CONSTANT(HBSimplePlastic, SLUMP_REG_SIMPLE, 2, 3)
+SLUMP_DEFINE_PLASTIC_CONSTANT(HBBercovierPlastic, SLUMP_REG_BERCOVIER, 2, 3)
+SLUMP_DEFINE_PLASTIC_CONSTANT(HBPapanastasiouPlastic, SLUMP_REG_PAPANASTASIOU, 2, 3)
 SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBSimple, HBSimpleKernel, HBSimplePlastic)
 SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBBercovier, HBBercovierKernel, HBBercovierPlastic)
 SLUMP_RHEOLOGY_DEFINE_POINTWISE(HBPapanastasiou, HBPapanastasiouKernel, HBPapanastasiouPlastic)

@@ -82,6 +82,15 @@ static inline void SlumpPositivePressure(PetscReal p, PetscReal d, PetscReal *P,
   }
 }
 
+/* A plastic kernel (slumprheology.h) with a constant yield stress
+   tau_y = params[ITAU] and the regularisation KIND of parameter params[IREG]. */
+#define SLUMP_DEFINE_PLASTIC_CONSTANT(NAME, KIND, ITAU, IREG) \
+  static inline void NAME(const PetscScalar prm[], PetscReal g, PetscReal p, const PetscReal x[], PetscReal *ty, PetscReal *R, PetscReal *dR) \
+  { \
+    *ty = PetscRealPart(prm[ITAU]); \
+    SlumpYieldShape(KIND, PetscRealPart(prm[IREG]), g, R, dR); \
+  }
+
 /* Used by implementations: declare a parameter (keeps a value already set by name). */
 PETSC_INTERN PetscErrorCode SlumpRheologyAddParameter(SlumpRheology, const char name[], const char option[], const char help[], PetscReal value, PetscReal lower, PetscBool strict);
 
