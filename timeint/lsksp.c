@@ -197,3 +197,40 @@ PetscErrorCode SlumpSUNLinSolSetExactNewton(SUNLinearSolver LS, void *ida_mem, S
   c->actx     = ctx;
   PetscFunctionReturn(0);
 }
+
+/* A stage solver that owns its residual, linear solves, convergence test
+   and iteration limit ignores what IDA hands it for those. */
+static SUNNonlinearSolver_Type StageGetType(SUNNonlinearSolver NLS)
+{
+  return SUNNONLINEARSOLVER_ROOTFIND;
+}
+static int StageSetSysFn(SUNNonlinearSolver NLS, SUNNonlinSolSysFn f)
+{
+  return SUN_NLS_SUCCESS;
+}
+static int StageSetLSetupFn(SUNNonlinearSolver NLS, SUNNonlinSolLSetupFn f)
+{
+  return SUN_NLS_SUCCESS;
+}
+static int StageSetLSolveFn(SUNNonlinearSolver NLS, SUNNonlinSolLSolveFn f)
+{
+  return SUN_NLS_SUCCESS;
+}
+static int StageSetConvTestFn(SUNNonlinearSolver NLS, SUNNonlinSolConvTestFn f, void *ctx)
+{
+  return SUN_NLS_SUCCESS;
+}
+static int StageSetMaxIters(SUNNonlinearSolver NLS, int maxiters)
+{
+  return SUN_NLS_SUCCESS;
+}
+
+void SlumpSUNNonlinSolSetStageOps(SUNNonlinearSolver NLS)
+{
+  NLS->ops->gettype     = StageGetType;
+  NLS->ops->setsysfn    = StageSetSysFn;
+  NLS->ops->setlsetupfn = StageSetLSetupFn;
+  NLS->ops->setlsolvefn = StageSetLSolveFn;
+  NLS->ops->setctestfn  = StageSetConvTestFn;
+  NLS->ops->setmaxiters = StageSetMaxIters;
+}

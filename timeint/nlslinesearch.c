@@ -17,11 +17,6 @@ typedef struct {
   PetscInt            nlin;
 } NLSContent;
 
-static SUNNonlinearSolver_Type NLSGetType(SUNNonlinearSolver NLS)
-{
-  return SUNNONLINEARSOLVER_ROOTFIND;
-}
-
 static PetscErrorCode NLSSolve_Private(NLSContent *c, N_Vector y0, N_Vector ycor, void *mem, PetscBool *conv)
 {
   realtype tcur, cj;
@@ -67,26 +62,6 @@ static int NLSSolve(SUNNonlinearSolver NLS, N_Vector y0, N_Vector ycor, N_Vector
   return SUN_NLS_SUCCESS;
 }
 
-static int NLSSetSysFn(SUNNonlinearSolver NLS, SUNNonlinSolSysFn f)
-{
-  return SUN_NLS_SUCCESS; /* the stage residual is ours */
-}
-static int NLSSetLSetupFn(SUNNonlinearSolver NLS, SUNNonlinSolLSetupFn f)
-{
-  return SUN_NLS_SUCCESS;
-}
-static int NLSSetLSolveFn(SUNNonlinearSolver NLS, SUNNonlinSolLSolveFn f)
-{
-  return SUN_NLS_SUCCESS;
-}
-static int NLSSetConvTestFn(SUNNonlinearSolver NLS, SUNNonlinSolConvTestFn f, void *ctx)
-{
-  return SUN_NLS_SUCCESS;
-}
-static int NLSSetMaxIters(SUNNonlinearSolver NLS, int maxiters)
-{
-  return SUN_NLS_SUCCESS; /* -newton_max_it */
-}
 /* IDA adds this up after every solve: the count of the last solve */
 static int NLSGetNumIters(SUNNonlinearSolver NLS, long int *n)
 {
@@ -134,14 +109,9 @@ PetscErrorCode SlumpSUNNonlinSolLineSearchCreate(SlumpProblem prob, Vec X, SUNCo
   PetscCall(VecDuplicate(X, &c->f));
   c->prob = prob;
   NLS->content              = c;
-  NLS->ops->gettype         = NLSGetType;
+  SlumpSUNNonlinSolSetStageOps(NLS);
   NLS->ops->solve           = NLSSolve;
   NLS->ops->free            = NLSFree;
-  NLS->ops->setsysfn        = NLSSetSysFn;
-  NLS->ops->setlsetupfn     = NLSSetLSetupFn;
-  NLS->ops->setlsolvefn     = NLSSetLSolveFn;
-  NLS->ops->setctestfn      = NLSSetConvTestFn;
-  NLS->ops->setmaxiters     = NLSSetMaxIters;
   NLS->ops->getnumiters     = NLSGetNumIters;
   NLS->ops->getcuriter      = NLSGetCurIter;
   NLS->ops->getnumconvfails = NLSGetNumConvFails;

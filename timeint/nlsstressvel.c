@@ -6,7 +6,8 @@
  * tangent's plastic term stays bounded whatever the regularisation, so the
  * iteration converges from the predictor where the primal Newton's basin
  * (|gdot| ~ 1/m around the yield surface) forced IDA to cut the step.
- * IDA keeps its error test and step control; the convergence test is
+ * IDA keeps its error test and step control (IDA's own convergence test,
+ * iteration limit and linear solver are not used); the convergence test is
  * IDA's (rate-based, on the WRMS norm of the correction with IDA's
  * weights, which leave the pressure out: timeint/ida.c), and a failure is
  * recoverable (IDA cuts the step). Selected by -newton_linearisation
@@ -28,14 +29,9 @@ typedef struct {
   PetscBool    haveJ;
   PetscReal    cjJ; /* cj of the factored Jacobian */
   long int     njac, nretry;
-  long int     nits, lastits, lastfail, nconvfails;
+  long int     lastits, lastfail;
   PetscInt     nlin;
 } SVContent;
-
-static SUNNonlinearSolver_Type SVGetType(SUNNonlinearSolver NLS)
-{
-  return SUNNONLINEARSOLVER_ROOTFIND;
-}
 
 /* IDA's test (ida_nls.c): m = 0 accepts with the rate of earlier solves;
    later iterations estimate the rate; a rate above 0.9 is a failure. */
@@ -154,32 +150,10 @@ static int SVSolve(SUNNonlinearSolver NLS, N_Vector y0, N_Vector ycor, N_Vector 
   int        status = SUN_NLS_CONV_RECVR;
   if (SlumpSundialsStatus(SVSolve_Private(NLS, y0, ycor, w, tol, mem, &status)))
     return SUN_NLS_EXT_FAIL;
-  c->nits += c->lastits;
   c->lastfail = status == SUN_NLS_SUCCESS ? 0 : 1;
-  c->nconvfails += c->lastfail;
   return status;
 }
 
-static int SVSetSysFn(SUNNonlinearSolver NLS, SUNNonlinSolSysFn f)
-{
-  return SUN_NLS_SUCCESS; /* the stage residual is ours */
-}
-static int SVSetLSetupFn(SUNNonlinearSolver NLS, SUNNonlinSolLSetupFn f)
-{
-  return SUN_NLS_SUCCESS;
-}
-static int SVSetLSolveFn(SUNNonlinearSolver NLS, SUNNonlinSolLSolveFn f)
-{
-  return SUN_NLS_SUCCESS;
-}
-static int SVSetConvTestFn(SUNNonlinearSolver NLS, SUNNonlinSolConvTestFn f, void *ctx)
-{
-  return SUN_NLS_SUCCESS; /* IDA's test, re-done in SVConvTest with our own rate memory */
-}
-static int SVSetMaxIters(SUNNonlinearSolver NLS, int maxiters)
-{
-  return SUN_NLS_SUCCESS; /* set at creation (-ida_max_nonlin_iters) */
-}
 /* IDA adds these up after every solve: the counts of the last solve */
 static int SVGetNumIters(SUNNonlinearSolver NLS, long int *n)
 {
@@ -241,14 +215,9 @@ PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem prob, Vec X, P
   PetscCall(KSPCreate(comm, &c->ksp));
   PetscCall(SlumpKSPSetDirect(c->ksp));
   NLS->content              = c;
-  NLS->ops->gettype         = SVGetType;
+  SlumpSUNNonlinSolSetStageOps(NLS);
   NLS->ops->solve           = SVSolve;
   NLS->ops->free            = SVFree;
-  NLS->ops->setsysfn        = SVSetSysFn;
-  NLS->ops->setlsetupfn     = SVSetLSetupFn;
-  NLS->ops->setlsolvefn     = SVSetLSolveFn;
-  NLS->ops->setctestfn      = SVSetConvTestFn;
-  NLS->ops->setmaxiters     = SVSetMaxIters;
   NLS->ops->getnumiters     = SVGetNumIters;
   NLS->ops->getcuriter      = SVGetCurIter;
   NLS->ops->getnumconvfails = SVGetNumConvFails;

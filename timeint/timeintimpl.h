@@ -66,6 +66,9 @@ PETSC_INTERN PetscErrorCode SlumpIntegratorResolveArrest(SlumpIntegrator, PetscR
 PETSC_INTERN PetscErrorCode SlumpIntegratorArrestFunctions(SlumpIntegrator, PetscReal t, Vec X, PetscReal g[]);
 /* Record criterion k's arrest at t; returns whether the run should stop. */
 PETSC_INTERN PetscBool      SlumpIntegratorArrestRecord(SlumpIntegrator, PetscInt k, PetscReal t);
+/* The ops of a stage solver that owns its residual, linear solves,
+   convergence test and iteration limit: IDA's are ignored. */
+PETSC_INTERN void SlumpSUNNonlinSolSetStageOps(SUNNonlinearSolver);
 /* IDA's nonlinear solver replaced by KINSOL with a line search per stage. */
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchCreate(SlumpProblem, Vec X, SUNContext, SUNNonlinearSolver *);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchGetLinearIterations(SUNNonlinearSolver, PetscInt *);
