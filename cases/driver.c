@@ -6,6 +6,8 @@
 #include "slumpscene.h"
 #include "slumpinterface.h"
 #include <time.h>
+#include <signal.h>
+#include <unistd.h>
 
 /* The first message of the last error, for the sweep's rows. */
 static char last_error[512];
@@ -29,7 +31,7 @@ PetscErrorCode SlumpErrorHandler(MPI_Comm comm, int line, const char *fun, const
       if (*c == '\n' || *c == '\r') *c = ' ';
   }
   /* PETSC_ERR_USER: PETSc's own "Unknown option x for -name. Available options: ..." */
-  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE) {
+  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_SIG) {
     if (p == PETSC_ERROR_INITIAL) {
       MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
       if (!rank || comm == PETSC_COMM_SELF) {
@@ -46,7 +48,9 @@ typedef struct {
   SlumpProblem     prob;
   SlumpScene       scene;
   SlumpFieldWriter writer;
-  FILE            *series, *steps;
+  FILE            *series, *steps; /* rank 0 */
+  char             series_path[PETSC_MAX_PATH_LEN], steps_path[PETSC_MAX_PATH_LEN];
+  int              signal; /* the SIGINT/SIGTERM that interrupted the run, 0 if none */
   MPI_Comm         comm;
   PetscMPIInt      rank;
   PetscInt         nout, newton_since, lin_since;
@@ -80,22 +84,25 @@ static void RecordDissipation(RunCtx *r, PetscReal t, PetscReal rate)
   r->ndiss++;
 }
 
-static PetscErrorCode OpenCSV(RunCtx *r, const char dir[], const char name[], const char header[], FILE **fp)
+/* A CSV file with its header (rank 0 writes; collective check). */
+static PetscErrorCode OpenCSV(RunCtx *r, const char dir[], const char name[], const char header[], FILE **fp, char path[])
 {
-  char path[PETSC_MAX_PATH_LEN];
+  int err = 0;
   PetscFunctionBeginUser;
   *fp = NULL;
-  if (r->rank) PetscFunctionReturn(0);
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s", dir, name));
-  *fp = fopen(path, "w");
-  PetscCheck(*fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
-  fprintf(*fp, "%s\n", header);
+  PetscCall(PetscSNPrintf(path, PETSC_MAX_PATH_LEN, "%s/%s", dir, name));
+  if (!r->rank) {
+    err = SlumpFileOpen(path, fp);
+    if (!err) err = SlumpFilePrintf(*fp, "%s\n", header);
+  }
+  PetscCall(SlumpFileCheck(r->comm, err, path));
   PetscFunctionReturn(0);
 }
 
 static PetscErrorCode StepMonitor(SlumpIntegrator ti, const SlumpStepRecord *s, void *ctx)
 {
   RunCtx *r = (RunCtx *)ctx;
+  int      flags[2] = {0, SlumpInterruptSignal()};
   PetscFunctionBeginUser;
   r->newton_since += s->newton_its;
   r->lin_since += s->lin_its;
@@ -104,7 +111,14 @@ static PetscErrorCode StepMonitor(SlumpIntegrator ti, const SlumpStepRecord *s, 
     /* collective: every rank computes, rank 0 writes */
     PetscCall(SlumpProblemComputeEnergyRates(r->prob, s->t, s->X, &e, rate));
     RecordDissipation(r, s->t, rate[0] + rate[1] + rate[2]);
-    if (r->steps) fprintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d,%.12e\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails, (double)e);
+    flags[0] = SlumpFilePrintf(r->steps, "%.12e,%.6e,%d,%d,%d,%d,%d,%.12e\n", (double)s->t, (double)s->h, (int)s->order, (int)s->newton_its, (int)s->lin_its, (int)s->err_test_fails, (int)s->conv_fails, (double)e);
+  }
+  /* one reduction per step: a failed write (rank 0) and a signal (any rank) */
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, flags, 2, MPI_INT, MPI_MAX, r->comm));
+  if (flags[0]) PetscCall(SlumpFileCheck(r->comm, flags[0], r->steps_path));
+  if (flags[1] && !r->signal) {
+    r->signal = flags[1];
+    PetscCall(SlumpIntegratorRequestStop(ti));
   }
   PetscFunctionReturn(0);
 }
@@ -113,14 +127,15 @@ static PetscErrorCode WriteDiagnostics(RunCtx *r, PetscReal t, Vec X, PetscReal 
 {
   SlumpDiagnostics d;
   PetscReal        rate;
+  int              err;
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemComputeDiagnostics(r->prob, t, X, &d));
   r->last = d;
   rate    = d.dissipation + d.dissipation_ambient + d.dissipation_wall;
   if (r->ndiss == 0) RecordDissipation(r, t, rate); /* the initial state */
-  if (r->series)
-    fprintf(r->series, "%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e\n", (double)t, (double)d.kinetic_energy, (double)d.mean_shear_rate, (double)d.max_shear_rate, (double)d.l2_shear_rate, (double)d.dissipation, (double)d.yielded_fraction, (double)d.flow_rate, (double)d.potential_energy, (double)d.dissipation_ambient, (double)d.dissipation_wall,
+  err = SlumpFilePrintf(r->series, "%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e\n", (double)t, (double)d.kinetic_energy, (double)d.mean_shear_rate, (double)d.max_shear_rate, (double)d.l2_shear_rate, (double)d.dissipation, (double)d.yielded_fraction, (double)d.flow_rate, (double)d.potential_energy, (double)d.dissipation_ambient, (double)d.dissipation_wall,
             (double)Dissipated(r, t, rate));
+  PetscCall(SlumpFileCheck(r->comm, err, r->series_path));
   if (r->writer) PetscCall(SlumpFieldWriterWrite(r->writer, t, X));
   if (!r->quiet) PetscCall(PetscPrintf(r->comm, "t %10.4e  h %9.3e  q %d  newton %4d  linear %4d  KE %11.5e  mean|gdot| %11.5e\n", (double)t, (double)h, (int)order, (int)r->newton_since, (int)r->lin_since, (double)d.kinetic_energy, (double)d.mean_shear_rate));
   r->newton_since = r->lin_since = 0;
@@ -181,10 +196,57 @@ static PetscErrorCode PeakMemory(MPI_Comm comm, PetscReal *mb)
   PetscFunctionReturn(0);
 }
 
+/* summary.csv: one header line and one row, written to summary.csv.part and
+   renamed when complete. status: ok, no_arrest, not_converged, failed or
+   interrupted; reason: the error or the signal (quoted CSV). Numbers a failed
+   run does not have (errors, scene results) are left empty. */
+static PetscErrorCode WriteSummary(RunCtx *r, const char dir[], const SlumpRunResult *R, SlumpScene scene, PetscInt narrest, const SlumpArrestCriterion *arrest, char arrestname[][64], const PetscReal err[2], const PetscReal nrm[2], const char status[], const char reason[])
+{
+  char              path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN], q[1300];
+  FILE             *fp = NULL;
+  int               e  = 0;
+  const SlumpStats *st = &R->stats;
+  PetscBool         ok = !strcmp(status, "ok") || !strcmp(status, "no_arrest") ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.csv", dir));
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s/summary.csv.part", dir));
+  if (!r->rank) {
+    size_t k = 0;
+    q[k++]   = '"';
+    for (const char *c = reason; *c && k + 3 < sizeof(q); ++c) {
+      if (*c == '"') q[k++] = '"';
+      q[k++] = *c;
+    }
+    q[k++] = '"';
+    q[k]   = 0;
+    e      = SlumpFileOpen(tmp, &fp);
+    if (!e) e = SlumpFilePrintf(fp, "scene,rheology,regularisation,regularisation_value,integrator,rtol,atol,dt,ranks,cells,unknowns");
+    for (PetscInt i = 0; i < scene->nparam && !e; ++i) e = SlumpFilePrintf(fp, ",%s", scene->pname[i]);
+    if (!e) e = SlumpFilePrintf(fp, ",t_final,t_arrest,steps,res_evals,jac_evals,newton_its,lin_its,lin_solves,err_test_fails,conv_fails,h_min,h_max,wall_time,peak_memory_mb,kinetic_energy,mean_shear_rate,max_shear_rate,yielded_fraction,flow_rate,err_u_l2,norm_u_l2,err_p_l2,norm_p_l2");
+    for (PetscInt k = 0; k < narrest && !e; ++k) e = SlumpFilePrintf(fp, ",t_arrest_%s,threshold_%s", arrestname[k], arrestname[k]);
+    for (PetscInt i = 0; i < scene->nresult && !e; ++i) e = SlumpFilePrintf(fp, ",%s", scene->rname[i]);
+    if (!e) e = SlumpFilePrintf(fp, ",status,reason\n%s,%s,%s,%.6e,%s,%.3e,%.3e,%.6e,%d,%d,%d", R->scene, R->rheology, R->regularisation, (double)R->regularisation_value, R->integrator, (double)R->rtol, (double)R->atol, (double)R->dt, (int)R->ranks, (int)R->cells, (int)R->unknowns);
+    for (PetscInt i = 0; i < scene->nparam && !e; ++i) e = SlumpFilePrintf(fp, ",%.10e", (double)scene->pvalue[i]);
+    if (!e)
+      e = SlumpFilePrintf(fp, ",%.10e,%.10e,%d,%d,%d,%d,%d,%d,%d,%d,%.6e,%.6e,%.4f,%.1f,%.10e,%.10e,%.10e,%.10e,%.10e", (double)R->t_final, (double)R->t_arrest, (int)st->steps, (int)st->res_evals, (int)st->jac_evals, (int)st->newton_its, (int)st->lin_its, (int)st->lin_solves, (int)st->err_test_fails, (int)st->conv_fails, (double)(st->steps ? st->h_min : 0.0), (double)st->h_max, (double)R->wall_time, (double)R->peak_mb, (double)r->last.kinetic_energy, (double)r->last.mean_shear_rate, (double)r->last.max_shear_rate, (double)r->last.yielded_fraction, (double)r->last.flow_rate);
+    if (!e) e = ok ? SlumpFilePrintf(fp, ",%.10e,%.10e,%.10e,%.10e", (double)err[0], (double)nrm[0], (double)err[1], (double)nrm[1]) : SlumpFilePrintf(fp, ",,,,");
+    for (PetscInt k = 0; k < narrest && !e; ++k) e = SlumpFilePrintf(fp, ",%.10e,%.10e", (double)arrest[k].t_arrest, (double)arrest[k].threshold);
+    for (PetscInt i = 0; i < scene->nresult && !e; ++i) e = ok ? SlumpFilePrintf(fp, ",%.10e", (double)scene->rvalue[i]) : SlumpFilePrintf(fp, ",");
+    if (!e) e = SlumpFilePrintf(fp, ",%s,%s\n", status, q);
+    if (!e) e = SlumpFileClose(&fp);
+    else (void)SlumpFileClose(&fp);
+  }
+  PetscCall(SlumpFileCommit(r->comm, e, tmp, path));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
 {
   char            scenename[64] = "couette_cessation", dir[PETSC_MAX_PATH_LEN] = "";
-  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE, eigen = PETSC_FALSE;
+  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE, eigen = PETSC_FALSE, overwrite = PETSC_FALSE;
+  SlumpLevelSet   ls;
+  PetscErrorCode  solve_err = 0;
+  char            status[32] = "ok", reason[600] = "";
   SlumpProblem    prob;
   SlumpScene      scene;
   SlumpIntegrator ti = NULL;
@@ -215,6 +277,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   PetscCall(PetscOptionsString("-scene", "Scene to run ('list' lists them)", "", scenename, scenename, sizeof(scenename), NULL));
   PetscCall(PetscOptionsString("-output_dir", "Output directory (default out/<scene>)", "", dir, dir, sizeof(dir), &set));
   PetscCall(PetscOptionsBool("-output_fields", "Write fields (XDMF + HDF5) at output times", "", fields, &fields, NULL));
+  PetscCall(PetscOptionsBool("-output_overwrite", "Write into an output directory another live run holds (its lock file)", "", overwrite, &overwrite, NULL));
   PetscCall(PetscOptionsBool("-quiet", "No progress lines", "", quiet, &quiet, NULL));
   PetscCall(PetscOptionsBool("-viscous_eigenvalue", "Compute lambda1 of the viscous operator (SLEPc) and the energy bound on the stopping time", "", eigen, &eigen, NULL));
   PetscOptionsEnd();
@@ -280,8 +343,15 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
 
   /* --- outputs --- */
   PetscCall(SlumpMakeDirectory(comm, dir));
-  PetscCall(OpenCSV(&r, dir, "series.csv", "t,kinetic_energy,mean_shear_rate,max_shear_rate,l2_shear_rate,dissipation,yielded_fraction,flow_rate,potential_energy,dissipation_ambient,dissipation_wall,dissipated", &r.series));
-  if (!scene->steady) PetscCall(OpenCSV(&r, dir, "steps.csv", "t,h,order,newton_its,lin_its,err_test_fails,conv_fails,kinetic_energy", &r.steps));
+  PetscCall(SlumpOutputLock(comm, dir, overwrite));
+  if (!r.rank) {
+    /* a summary left by an earlier run in this directory is not this run's */
+    char old[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(old, sizeof(old), "%s/summary.csv", dir));
+    (void)unlink(old);
+  }
+  PetscCall(OpenCSV(&r, dir, "series.csv", "t,kinetic_energy,mean_shear_rate,max_shear_rate,l2_shear_rate,dissipation,yielded_fraction,flow_rate,potential_energy,dissipation_ambient,dissipation_wall,dissipated", &r.series, r.series_path));
+  if (!scene->steady) PetscCall(OpenCSV(&r, dir, "steps.csv", "t,h,order,newton_its,lin_its,err_test_fails,conv_fails,kinetic_energy", &r.steps, r.steps_path));
   if (fields) PetscCall(SlumpFieldWriterCreate(prob, dir, &r.writer));
 
   /* --- run --- */
@@ -290,16 +360,13 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   PetscCall(PetscObjectSetName((PetscObject)X, "solution"));
   PetscCall(SlumpProblemProjectInitialState(prob, scene->t0, X));
   if (scene->initial) PetscCall(scene->initial(scene, prob, X));
-  {
-    SlumpLevelSet ls;
-    PetscCall(SlumpProblemGetLevelSet(prob, &ls));
-    if (ls) {
-      char path[PETSC_MAX_PATH_LEN];
-      PetscCall(PetscSNPrintf(path, sizeof(path), "%s/interface.csv", dir));
-      PetscCall(SlumpLevelSetSetLog(ls, path));
-      PetscCall(SlumpLevelSetRecordVolume(ls, scene->t0, X));
-      PetscCall(SlumpLevelSetUpdateSurface(ls, scene->t0, X));
-    }
+  PetscCall(SlumpProblemGetLevelSet(prob, &ls));
+  if (ls) {
+    char path[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/interface.csv", dir));
+    PetscCall(SlumpLevelSetSetLog(ls, path));
+    PetscCall(SlumpLevelSetRecordVolume(ls, scene->t0, X));
+    PetscCall(SlumpLevelSetUpdateSurface(ls, scene->t0, X));
   }
   PetscCall(PetscMemzero(&stats, sizeof(stats)));
   if (eigen) {
@@ -326,26 +393,36 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
       } else PetscCall(PetscPrintf(comm, "no stopping-time bound printed: %s\n", tau0 > 0 ? "the constant beta of the estimate is not known for this geometry" : "no yield stress"));
     }
   }
+  /* A failed solve (no convergence, a failed write) still gets its summary,
+     with the status and the reason; an interrupted one (SIGINT, SIGTERM)
+     ends after its current step and gets its summary too. */
   if (scene->steady) {
-    PetscCall(SlumpSteadySolve(prob, X, &stats));
-    t_final = 0.0;
-    PetscCall(WriteDiagnostics(&r, 0.0, X, 0.0, 0));
+    solve_err = SlumpSteadySolve(prob, X, &stats);
+    t_final   = 0.0;
+    if (!solve_err) PetscCall(WriteDiagnostics(&r, 0.0, X, 0.0, 0));
   } else {
     PetscCall(SlumpIntegratorSetStepMonitor(ti, StepMonitor, &r));
     PetscCall(SlumpIntegratorSetOutputMonitor(ti, OutputMonitor, &r));
-    PetscCall(SlumpIntegratorSolve(ti, X));
+    solve_err = SlumpIntegratorSolve(ti, X);
     PetscCall(SlumpIntegratorGetStats(ti, &stats));
     PetscCall(SlumpIntegratorGetTime(ti, &t_final));
     PetscCall(SlumpIntegratorGetArrestTime(ti, &t_arrest));
-    PetscCall(SlumpProblemComputeDiagnostics(prob, t_final, X, &r.last));
+    if (!solve_err) PetscCall(SlumpProblemComputeDiagnostics(prob, t_final, X, &r.last));
   }
-  PetscCall(SlumpProblemComputeErrors(prob, t_final, X, err, nrm));
-  if (scene->results) PetscCall(scene->results(scene, prob, t_final, X));
-  {
+  if (scene->steady && !solve_err && SlumpInterruptSignal()) r.signal = SlumpInterruptSignal();
+  if (solve_err) {
+    PetscCall(PetscStrncpy(status, solve_err == PETSC_ERR_NOT_CONVERGED ? "not_converged" : "failed", sizeof(status)));
+    PetscCall(PetscStrncpy(reason, SlumpLastErrorMessage()[0] ? SlumpLastErrorMessage() : "unknown error", sizeof(reason)));
+  } else if (r.signal) {
+    PetscCall(PetscStrncpy(status, "interrupted", sizeof(status)));
+    PetscCall(PetscSNPrintf(reason, sizeof(reason), "%s at t = %g", r.signal == SIGINT ? "SIGINT" : (r.signal == SIGTERM ? "SIGTERM" : "a signal"), (double)t_final));
+  } else if (narrest && t_arrest < 0) PetscCall(PetscStrncpy(status, "no_arrest", sizeof(status)));
+  err[0] = err[1] = nrm[0] = nrm[1] = -1.0;
+  if (!solve_err) {
+    PetscCall(SlumpProblemComputeErrors(prob, t_final, X, err, nrm));
+    if (scene->results) PetscCall(scene->results(scene, prob, t_final, X));
     /* free surface: the final profile (the deposit of a collapse) */
-    SlumpLevelSet    ls;
     SlumpFormulation form;
-    PetscCall(SlumpProblemGetLevelSet(prob, &ls));
     PetscCall(SlumpProblemGetFormulation(prob, &form));
     if (ls && form == SLUMP_FORMULATION_PLANE) {
       char path[PETSC_MAX_PATH_LEN];
@@ -355,7 +432,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   }
   PetscCall(PetscTime(&t_end));
   PetscCall(PeakMemory(comm, &peak));
-  if (!scene->steady && scene->exact_arrest) {
+  if (!solve_err && !scene->steady && scene->exact_arrest) {
     /* the exact model's times, for the first criterion (not in the cost) */
     PetscReal ts = -1.0, ta = -1.0;
     PetscCall(scene->exact_arrest(scene, prob, narrest ? (SlumpDiagnosticKind)arrest[0].diag : SLUMP_DIAG_MEAN_SHEAR_RATE, narrest ? arrest[0].threshold : 0.0, &ts, &ta));
@@ -405,29 +482,27 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
       R->rvalue[i] = scene->rvalue[i];
     }
   }
-  /* --- summary --- */
-  if (!r.rank) {
-    char              path[PETSC_MAX_PATH_LEN];
-    FILE             *fp;
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/summary.csv", dir));
-    fp = fopen(path, "w");
-    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
-    fprintf(fp, "scene,rheology,regularisation,regularisation_value,integrator,rtol,atol,dt,ranks,cells,unknowns");
-    for (PetscInt i = 0; i < scene->nparam; ++i) fprintf(fp, ",%s", scene->pname[i]);
-    fprintf(fp, ",t_final,t_arrest,steps,res_evals,jac_evals,newton_its,lin_its,lin_solves,err_test_fails,conv_fails,h_min,h_max,wall_time,peak_memory_mb,kinetic_energy,mean_shear_rate,max_shear_rate,yielded_fraction,flow_rate,err_u_l2,norm_u_l2,err_p_l2,norm_p_l2");
-    for (PetscInt k = 0; k < narrest; ++k) fprintf(fp, ",t_arrest_%s,threshold_%s", arrestname[k], arrestname[k]);
-    for (PetscInt i = 0; i < scene->nresult; ++i) fprintf(fp, ",%s", scene->rname[i]);
-    fprintf(fp, "\n%s,%s,%s,%.6e,%s,%.3e,%.3e,%.6e,%d,%d,%d", scenename, R->rheology, R->regularisation, (double)R->regularisation_value, R->integrator, (double)rtol, (double)atol, (double)dt, (int)size, (int)ncells, (int)N);
-    for (PetscInt i = 0; i < scene->nparam; ++i) fprintf(fp, ",%.10e", (double)scene->pvalue[i]);
-    fprintf(fp, ",%.10e,%.10e,%d,%d,%d,%d,%d,%d,%d,%d,%.6e,%.6e,%.4f,%.1f,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e", (double)t_final, (double)t_arrest, (int)stats.steps, (int)stats.res_evals, (int)stats.jac_evals, (int)stats.newton_its, (int)stats.lin_its, (int)stats.lin_solves, (int)stats.err_test_fails, (int)stats.conv_fails, (double)(stats.steps ? stats.h_min : 0.0), (double)stats.h_max, (double)(t_end - t_start), (double)peak, (double)r.last.kinetic_energy, (double)r.last.mean_shear_rate, (double)r.last.max_shear_rate, (double)r.last.yielded_fraction, (double)r.last.flow_rate, (double)err[0], (double)nrm[0], (double)err[1], (double)nrm[1]);
-    for (PetscInt k = 0; k < narrest; ++k) fprintf(fp, ",%.10e,%.10e", (double)arrest[k].t_arrest, (double)arrest[k].threshold);
-    for (PetscInt i = 0; i < scene->nresult; ++i) fprintf(fp, ",%.10e", (double)scene->rvalue[i]);
-    fprintf(fp, "\n");
-    fclose(fp);
-    if (r.series) fclose(r.series);
-    if (r.steps) fclose(r.steps);
+  /* --- the time series, then the summary (whole or absent) --- */
+  {
+    int e = SlumpFileClose(&r.series);
+    PetscCall(SlumpFileCheck(comm, e, r.series_path));
+    e = SlumpFileClose(&r.steps);
+    if (!scene->steady) PetscCall(SlumpFileCheck(comm, e, r.steps_path));
+    if (ls) PetscCall(SlumpLevelSetSetLog(ls, NULL));
   }
-  if (!banner) goto cleanup;
+  PetscCall(WriteSummary(&r, dir, R, scene, narrest, arrest, arrestname, err, nrm, status, reason));
+  if (solve_err) {
+    /* the solver's error, already reported; the outputs are closed */
+    PetscCall(SlumpOutputUnlock(comm, dir));
+    goto cleanup;
+  }
+  if (r.signal) {
+    PetscCall(SlumpOutputUnlock(comm, dir));
+    PetscCall(PetscPrintf(comm, "interrupted (%s) at t = %.6g after %d steps; outputs up to it in %s/ (summary.csv status interrupted)\n", r.signal == SIGINT ? "SIGINT" : "SIGTERM", (double)t_final, (int)stats.steps, dir));
+    solve_err = PETSC_ERR_SIG;
+    goto cleanup;
+  }
+  if (!banner) goto unlock;
   PetscCall(PetscPrintf(comm, "summary: scene %s, t %.6g", scenename, (double)t_final));
   if (!scene->steady) {
     for (PetscInt k = 0; k < narrest; ++k) {
@@ -441,13 +516,16 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   for (PetscInt i = 0; i < scene->nresult; ++i) PetscCall(PetscPrintf(comm, ", %s %.6g", scene->rname[i], (double)scene->rvalue[i]));
   PetscCall(PetscPrintf(comm, "\noutputs in %s/\n", dir));
 
+unlock:
+  PetscCall(SlumpOutputUnlock(comm, dir));
 cleanup:
   PetscCall(VecDestroy(&X));
   PetscCall(SlumpFieldWriterDestroy(&r.writer));
   PetscCall(SlumpIntegratorDestroy(&ti));
   PetscCall(SlumpSceneDestroy(&scene));
   PetscCall(SlumpProblemDestroy(&prob));
-  PetscFunctionReturn(0);
+  if (solve_err == PETSC_ERR_SIG) SETERRQ(comm, PETSC_ERR_SIG, "Interrupted by %s at t = %g; the outputs up to it are in %s", r.signal == SIGINT ? "SIGINT" : "SIGTERM", (double)t_final, dir);
+  PetscFunctionReturn(solve_err);
 }
 
 /* slump: a sweep when -sweep is given, otherwise one run. */

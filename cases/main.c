@@ -27,12 +27,23 @@ int main(int argc, char **argv)
   ierr = SlepcInitialize(&argc, &argv, NULL, help);
   if (ierr) return 1;
   PetscCall(PetscPushErrorHandler(SlumpErrorHandler, NULL));
+  /* after PETSc's own handlers: SIGINT/SIGTERM end the run after its step */
+  PetscCall(SlumpInstallInterruptHandlers());
   ierr = SlumpRun(PETSC_COMM_WORLD);
   PetscCall(PetscPopErrorHandler());
+  SlumpOutputUnlockAll();
+  if (ierr && SlumpHasUnclosableOutput()) {
+    /* the error is reported and the other outputs are closed */
+    fflush(stdout);
+    fflush(stderr);
+    _exit(1);
+  }
   if (ierr) {
-    /* Collective errors reach every rank; finalise cleanly and fail. */
+    /* Collective errors reach every rank; finalise cleanly and fail
+       (128 + the signal for an interrupted run, as a shell reports it). */
+    const int sig = SlumpInterruptSignal();
     SlepcFinalize();
-    return 1;
+    return ierr == PETSC_ERR_SIG && sig ? 128 + sig : 1;
   }
   PetscCall(SlepcFinalize());
   return 0;

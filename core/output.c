@@ -132,77 +132,58 @@ PetscErrorCode SlumpFieldWriterDestroy(SlumpFieldWriter *w)
 
 static PetscErrorCode WriteXdmf(SlumpFieldWriter w)
 {
-  char        path[PETSC_MAX_PATH_LEN];
-  FILE       *fp;
+  char        path[PETSC_MAX_PATH_LEN], tmp[PETSC_MAX_PATH_LEN];
+  FILE       *fp  = NULL;
+  int         err = 0;
   PetscMPIInt rank;
   PetscInt    dim;
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(w->prob->comm, &rank));
-  if (rank) PetscFunctionReturn(0);
   PetscCall(DMGetDimension(w->prob->dm, &dim));
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields.xmf", w->dir));
-  fp = fopen(path, "w");
-  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
-  fprintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
-  fprintf(fp, "  <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
+  PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s/fields.xmf.part", w->dir));
+  if (rank) {
+    PetscCall(SlumpFileCommit(w->prob->comm, 0, tmp, path));
+    PetscFunctionReturn(0);
+  }
+  /* the index is rewritten whole at each output and renamed over the last */
+  err = SlumpFileOpen(tmp, &fp);
+  if (!err) err = SlumpFilePrintf(fp, "<?xml version=\"1.0\" ?>\n<Xdmf Version=\"2.0\">\n <Domain>\n");
+  if (!err) err = SlumpFilePrintf(fp, "  <Grid Name=\"fields\" GridType=\"Collection\" CollectionType=\"Temporal\">\n");
   for (PetscInt k = 0; k < w->n; ++k) {
-    fprintf(fp, "   <Grid Name=\"mesh\" GridType=\"Uniform\">\n    <Time Value=\"%.10g\"/>\n", (double)w->times[k]);
-    fprintf(fp, "    <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n", (int)w->ncells);
-    fprintf(fp, "     <DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Format=\"HDF\">fields.h5:/viz/topology/cells</DataItem>\n    </Topology>\n", (int)w->ncells);
-    fprintf(fp, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n    </Geometry>\n", (int)w->nverts, (int)dim);
+    if (!err) err = SlumpFilePrintf(fp, "   <Grid Name=\"mesh\" GridType=\"Uniform\">\n    <Time Value=\"%.10g\"/>\n", (double)w->times[k]);
+    if (!err) err = SlumpFilePrintf(fp, "    <Topology TopologyType=\"Triangle\" NumberOfElements=\"%d\">\n", (int)w->ncells);
+    if (!err) err = SlumpFilePrintf(fp, "     <DataItem Dimensions=\"%d 3\" NumberType=\"Int\" Format=\"HDF\">fields.h5:/viz/topology/cells</DataItem>\n    </Topology>\n", (int)w->ncells);
+    if (!err) err = SlumpFilePrintf(fp, "    <Geometry GeometryType=\"XY\">\n     <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/geometry/vertices</DataItem>\n    </Geometry>\n", (int)w->nverts, (int)dim);
     for (PetscInt f = 0; f < w->nf; ++f) {
       const PetscInt nc = w->nc[f];
       const char    *name = w->names[f];
-      fprintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", name, nc > 1 ? "Vector" : "Scalar");
+      if (!err) err = SlumpFilePrintf(fp, "    <Attribute Name=\"%s\" AttributeType=\"%s\" Center=\"Node\">\n", name, nc > 1 ? "Vector" : "Scalar");
       if (nc > 1) {
-        fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d %d\" Type=\"HyperSlab\">\n", (int)w->nverts, (int)nc);
-        fprintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%d 0 0 1 1 1 1 %d %d</DataItem>\n", (int)k, (int)w->nverts, (int)nc);
-        fprintf(fp, "      <DataItem Dimensions=\"%d %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, (int)nc, name);
+        if (!err) err = SlumpFilePrintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d %d\" Type=\"HyperSlab\">\n", (int)w->nverts, (int)nc);
+        if (!err) err = SlumpFilePrintf(fp, "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%d 0 0 1 1 1 1 %d %d</DataItem>\n", (int)k, (int)w->nverts, (int)nc);
+        if (!err) err = SlumpFilePrintf(fp, "      <DataItem Dimensions=\"%d %d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, (int)nc, name);
       } else {
-        fprintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d\" Type=\"HyperSlab\">\n", (int)w->nverts);
-        fprintf(fp, "      <DataItem Dimensions=\"3 2\" Format=\"XML\">%d 0 1 1 1 %d</DataItem>\n", (int)k, (int)w->nverts);
-        fprintf(fp, "      <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, name);
+        if (!err) err = SlumpFilePrintf(fp, "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%d\" Type=\"HyperSlab\">\n", (int)w->nverts);
+        if (!err) err = SlumpFilePrintf(fp, "      <DataItem Dimensions=\"3 2\" Format=\"XML\">%d 0 1 1 1 %d</DataItem>\n", (int)k, (int)w->nverts);
+        if (!err) err = SlumpFilePrintf(fp, "      <DataItem Dimensions=\"%d %d\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/vertex_fields/fields_%s</DataItem>\n", (int)w->n, (int)w->nverts, name);
       }
-      fprintf(fp, "     </DataItem>\n    </Attribute>\n");
+      if (!err) err = SlumpFilePrintf(fp, "     </DataItem>\n    </Attribute>\n");
     }
-    fprintf(fp, "   </Grid>\n");
+    if (!err) err = SlumpFilePrintf(fp, "   </Grid>\n");
   }
-  fprintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
-  fclose(fp);
+  if (!err) err = SlumpFilePrintf(fp, "  </Grid>\n </Domain>\n</Xdmf>\n");
+  if (!err) err = SlumpFileClose(&fp);
+  else (void)SlumpFileClose(&fp);
+  PetscCall(SlumpFileCommit(w->prob->comm, err, tmp, path));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
+/* The mesh (first time) and the fields at one time into an open viewer. */
+static PetscErrorCode WriteH5(SlumpFieldWriter w, PetscViewer v)
 {
-  SlumpProblem           prob = w->prob;
-  SlumpRheologyPointwise pw;
-  PetscPointFunc         funcs[6];
-  PetscDS                ds;
-  PetscViewer            v;
-  char                   path[PETSC_MAX_PATH_LEN];
+  SlumpProblem prob = w->prob;
   PetscFunctionBeginUser;
-  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
-  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
-    funcs[0] = CopyVelocity;
-    funcs[1] = CopyLevelSet;
-  } else if (w->nf == 3) {
-    funcs[0] = CopyVelocity;
-    funcs[1] = pw.shear_rate;
-    funcs[2] = pw.eta;
-  } else {
-    funcs[0] = CopyVelocity;
-    funcs[1] = CopyPressure;
-    funcs[2] = pw.shear_rate;
-    funcs[3] = prob->twoPhase ? pw.tp_eta : pw.eta;
-    funcs[4] = CopyLevelSet;
-    funcs[5] = pw.tp_yielded;
-  }
-  PetscCall(DMGetDS(w->dmOut, &ds));
-  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM + prob->nsurf, prob->constants));
-  PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
-  PetscCall(DMProjectField(w->dmOut, t, prob->diagX, funcs, INSERT_ALL_VALUES, w->Xout));
-  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields.h5", w->dir));
-  PetscCall(PetscViewerHDF5Open(prob->comm, path, w->n ? FILE_MODE_APPEND : FILE_MODE_WRITE, &v));
   PetscCall(PetscViewerPushFormat(v, PETSC_VIEWER_HDF5_XDMF));
   if (!w->n) {
     PetscCall(DMView(w->dmOut, v));
@@ -233,7 +214,53 @@ PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
   PetscCall(VecView(w->Xout, v));
   PetscCall(PetscViewerHDF5PopTimestepping(v));
   PetscCall(PetscViewerPopFormat(v));
-  PetscCall(PetscViewerDestroy(&v));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpFieldWriterWrite(SlumpFieldWriter w, PetscReal t, Vec X)
+{
+  SlumpProblem           prob = w->prob;
+  SlumpRheologyPointwise pw;
+  PetscPointFunc         funcs[6];
+  PetscDS                ds;
+  PetscViewer            v = NULL;
+  char                   path[PETSC_MAX_PATH_LEN];
+  PetscFunctionBeginUser;
+  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
+    funcs[0] = CopyVelocity;
+    funcs[1] = CopyLevelSet;
+  } else if (w->nf == 3) {
+    funcs[0] = CopyVelocity;
+    funcs[1] = pw.shear_rate;
+    funcs[2] = pw.eta;
+  } else {
+    funcs[0] = CopyVelocity;
+    funcs[1] = CopyPressure;
+    funcs[2] = pw.shear_rate;
+    funcs[3] = prob->twoPhase ? pw.tp_eta : pw.eta;
+    funcs[4] = CopyLevelSet;
+    funcs[5] = pw.tp_yielded;
+  }
+  PetscCall(DMGetDS(w->dmOut, &ds));
+  PetscCall(PetscDSSetConstants(ds, SLUMP_C_NUM + prob->nsurf, prob->constants));
+  PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
+  PetscCall(DMProjectField(w->dmOut, t, prob->diagX, funcs, INSERT_ALL_VALUES, w->Xout));
+  PetscCall(PetscSNPrintf(path, sizeof(path), "%s/fields.h5", w->dir));
+  {
+    /* a failed write (full disk) closes the file and is one error naming it */
+    PetscErrorCode ierr, ierr2 = 0;
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* HDF5's own error stack: the error below says it */
+    ierr = PetscViewerHDF5Open(prob->comm, path, w->n ? FILE_MODE_APPEND : FILE_MODE_WRITE, &v);
+    if (!ierr) ierr = WriteH5(w, v);
+    if (v) ierr2 = PetscViewerDestroy(&v);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr2) SlumpSetUnclosableOutput();
+    ierr = ierr ? ierr : ierr2;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ierr, 1, MPI_INT, MPI_MAX, prob->comm));
+    PetscCheck(!ierr, prob->comm, PETSC_ERR_FILE_WRITE, "Cannot write the fields to %s (HDF5); free space, choose another -output_dir or give -output_fields false", path);
+  }
   if (w->n == w->cap) {
     PetscReal *nt;
     w->cap = w->cap ? 2 * w->cap : 16;

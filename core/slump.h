@@ -367,3 +367,29 @@ PETSC_EXTERN PetscErrorCode SlumpKSPSetDirect(KSP ksp);
 
 /* Make a directory and its parents (rank 0; collective). */
 PETSC_EXTERN PetscErrorCode SlumpMakeDirectory(MPI_Comm comm, const char dir[]);
+
+/* Checked text outputs (core/files.c). SlumpFileOpen opens for writing,
+   line buffered (a killed run keeps every completed row); it, SlumpFilePrintf
+   and SlumpFileClose return 0 or the errno of the failure (NULL file: 0);
+   SlumpFileCheck makes a rank's errno collective and raises it as an error
+   naming the file; SlumpFileCommit renames a complete temporary file to its
+   name (rank 0), or removes it if err is set. */
+PETSC_EXTERN int            SlumpFileOpen(const char path[], FILE **fp);
+PETSC_EXTERN int            SlumpFilePrintf(FILE *fp, const char fmt[], ...) PETSC_ATTRIBUTE_FORMAT(2, 3);
+PETSC_EXTERN int            SlumpFileClose(FILE **fp);
+PETSC_EXTERN PetscErrorCode SlumpFileCheck(MPI_Comm comm, int err, const char path[]);
+PETSC_EXTERN PetscErrorCode SlumpFileCommit(MPI_Comm comm, int err, const char tmp[], const char path[]);
+/* The output directory's lock (dir/.slump.lock, collective): refused while
+   another live run holds it unless overwrite; released by Unlock, and by
+   UnlockAll at exit (any path). */
+PETSC_EXTERN PetscErrorCode SlumpOutputLock(MPI_Comm comm, const char dir[], PetscBool overwrite);
+PETSC_EXTERN PetscErrorCode SlumpOutputUnlock(MPI_Comm comm, const char dir[]);
+PETSC_EXTERN void           SlumpOutputUnlockAll(void);
+/* An output file HDF5 could not close (a failed write): the program must end
+   without PetscFinalize/MPI_Finalize, where HDF5 1.10 would crash on it. */
+PETSC_EXTERN void      SlumpSetUnclosableOutput(void);
+PETSC_EXTERN PetscBool SlumpHasUnclosableOutput(void);
+/* SIGINT/SIGTERM set a flag (the second one ends the process); the step
+   loop reads it with SlumpInterruptSignal (0: none, else the signal). */
+PETSC_EXTERN PetscErrorCode SlumpInstallInterruptHandlers(void);
+PETSC_EXTERN int            SlumpInterruptSignal(void);

@@ -44,7 +44,9 @@ struct _n_SlumpLevelSet {
   /* volume record */
   PetscReal      volume0, volume, max_drift;
   PetscBool      have_volume0;
-  FILE          *log;
+  FILE          *log;    /* interface.csv (rank 0) */
+  PetscBool      haslog; /* a log is set (every rank) */
+  char           logpath[PETSC_MAX_PATH_LEN];
   PetscBool      volume_correction;
   PetscReal      volume_shift; /* sum of the corrections' shifts of phi */
   /* potential energy the between-step actions add to the material (sums of

@@ -384,14 +384,11 @@ PetscErrorCode SlumpLevelSetRecordVolume(SlumpLevelSet ls, PetscReal t, Vec X)
     /* collective: every rank measures, rank 0 writes */
     PetscCall(SlumpLevelSetComputeExtent(ls, t, X, box));
     for (PetscInt g = 0; g < ls->ngauge; ++g) PetscCall(SlumpLevelSetComputeHeightAt(ls, t, X, ls->gauge[g], &hg[g], &found[g]));
-    if (ls->log) {
-      PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "%.10g,%.12g,%.6e,%" PetscInt_FMT ",%.8g,%.8g,%.8g,%.8e,%.8e", (double)t, (double)ls->volume, (double)(ls->volume0 > 0 ? ls->volume / ls->volume0 - 1.0 : 0.0), ls->nreinit, (double)box[0], (double)box[1], (double)box[3], (double)ls->energy_reinit, (double)ls->energy_correction));
-      for (PetscInt g = 0; g < ls->ngauge; ++g) {
-        if (found[g]) PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",%.8g", (double)hg[g]));
-        else PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",nan"));
-      }
-      PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "\n"));
-      fflush(ls->log);
+    {
+      int err = SlumpFilePrintf(ls->log, "%.10g,%.12g,%.6e,%" PetscInt_FMT ",%.8g,%.8g,%.8g,%.8e,%.8e", (double)t, (double)ls->volume, (double)(ls->volume0 > 0 ? ls->volume / ls->volume0 - 1.0 : 0.0), ls->nreinit, (double)box[0], (double)box[1], (double)box[3], (double)ls->energy_reinit, (double)ls->energy_correction);
+      for (PetscInt g = 0; g < ls->ngauge && !err; ++g) err = found[g] ? SlumpFilePrintf(ls->log, ",%.8g", (double)hg[g]) : SlumpFilePrintf(ls->log, ",nan");
+      if (!err) err = SlumpFilePrintf(ls->log, "\n");
+      if (ls->haslog) PetscCall(SlumpFileCheck(ls->comm, err, ls->logpath));
     }
   }
   PetscFunctionReturn(0);
@@ -499,7 +496,7 @@ static PetscErrorCode Destroy(void *ctx)
 {
   SlumpLevelSet ls = (SlumpLevelSet)ctx;
   PetscFunctionBeginUser;
-  if (ls->log) PetscCall(PetscFClose(PETSC_COMM_SELF, ls->log));
+  (void)SlumpFileClose(&ls->log); /* checked by SlumpLevelSetSetLog(ls, NULL) */
   PetscCall(PetscFree2(ls->surf_x, ls->surf_h));
   PetscCall(SlumpLSNodesDestroy(&ls->nodes));
   PetscCall(PetscFree(ls));
@@ -587,17 +584,21 @@ PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls)
 PetscErrorCode SlumpLevelSetSetLog(SlumpLevelSet ls, const char path[])
 {
   PetscMPIInt rank;
+  int         err = 0;
   PetscFunctionBeginUser;
-  if (ls->log) PetscCall(PetscFClose(PETSC_COMM_SELF, ls->log));
-  ls->log = NULL;
+  if (ls->haslog) PetscCall(SlumpFileCheck(ls->comm, SlumpFileClose(&ls->log), ls->logpath));
+  ls->haslog = PETSC_FALSE;
   if (!path) PetscFunctionReturn(0);
+  PetscCall(PetscStrncpy(ls->logpath, path, sizeof(ls->logpath)));
   PetscCallMPI(MPI_Comm_rank(ls->comm, &rank));
   if (rank == 0) {
-    PetscCall(PetscFOpen(PETSC_COMM_SELF, path, "w", &ls->log));
-    PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "t,volume,drift,reinitialisations,x_min,x_max,y_max,energy_reinit,energy_correction"));
-    for (PetscInt g = 0; g < ls->ngauge; ++g) PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, ",height_at_%g", (double)ls->gauge[g]));
-    PetscCall(PetscFPrintf(PETSC_COMM_SELF, ls->log, "\n"));
+    err = SlumpFileOpen(path, &ls->log);
+    if (!err) err = SlumpFilePrintf(ls->log, "t,volume,drift,reinitialisations,x_min,x_max,y_max,energy_reinit,energy_correction");
+    for (PetscInt g = 0; g < ls->ngauge && !err; ++g) err = SlumpFilePrintf(ls->log, ",height_at_%g", (double)ls->gauge[g]);
+    if (!err) err = SlumpFilePrintf(ls->log, "\n");
   }
+  ls->haslog = PETSC_TRUE;
+  PetscCall(SlumpFileCheck(ls->comm, err, path));
   PetscFunctionReturn(0);
 }
 
@@ -662,7 +663,7 @@ PetscErrorCode SlumpLevelSetSetGauges(SlumpLevelSet ls, PetscInt n, const PetscR
 {
   PetscFunctionBeginUser;
   PetscCheck(n >= 0 && n <= 4, ls->comm, PETSC_ERR_ARG_OUTOFRANGE, "At most 4 gauges; got %" PetscInt_FMT, n);
-  PetscCheck(!ls->log, ls->comm, PETSC_ERR_ORDER, "Set the gauges before opening the log");
+  PetscCheck(!ls->haslog, ls->comm, PETSC_ERR_ORDER, "Set the gauges before opening the log");
   ls->ngauge = n;
   for (PetscInt g = 0; g < n; ++g) ls->gauge[g] = x[g];
   PetscFunctionReturn(0);

@@ -335,12 +335,19 @@ PetscErrorCode SlumpLevelSetWriteProfile(SlumpLevelSet ls, PetscReal t, Vec X, c
   for (PetscInt i = 0; i < npt; ++i) x[i] = lo[0] + (hi[0] - lo[0]) * i / (npt - 1);
   PetscCall(SlumpLevelSetComputeProfile(ls, t, X, npt, x, top));
   PetscCallMPI(MPI_Comm_rank(ls->comm, &rank));
-  if (!rank) {
-    FILE *fp;
-    PetscCall(PetscFOpen(PETSC_COMM_SELF, path, "w", &fp));
-    PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "x,height\n"));
-    for (PetscInt i = 0; i < npt; ++i) PetscCall(PetscFPrintf(PETSC_COMM_SELF, fp, "%.10g,%.10g\n", (double)x[i], (double)top[i]));
-    PetscCall(PetscFClose(PETSC_COMM_SELF, fp));
+  {
+    FILE *fp  = NULL;
+    int   err = 0;
+    char  tmp[PETSC_MAX_PATH_LEN];
+    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
+    if (!rank) {
+      err = SlumpFileOpen(tmp, &fp);
+      if (!err) err = SlumpFilePrintf(fp, "x,height\n");
+      for (PetscInt i = 0; i < npt && !err; ++i) err = SlumpFilePrintf(fp, "%.10g,%.10g\n", (double)x[i], (double)top[i]);
+      if (!err) err = SlumpFileClose(&fp);
+      else (void)SlumpFileClose(&fp);
+    }
+    PetscCall(SlumpFileCommit(ls->comm, err, tmp, path));
   }
   PetscCall(PetscFree2(x, top));
   PetscFunctionReturn(0);

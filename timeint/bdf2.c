@@ -120,7 +120,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     }
     PetscCall(VecCopy(Yn, Yprev));
     have_prev = PETSC_TRUE;
-    if (stop) break;
+    if (stop || ti->stop_requested) break;
     {
       /* between steps (level-set reinitialisation): restart with BDF1 */
       PetscBool changed;

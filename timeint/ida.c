@@ -455,6 +455,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       if (ti->outmon) PetscCall(ti->outmon(ti, tout, Y, ti->outctx));
       next_out = ti->t0 + (++kout) * ti->dtout;
     }
+    if (ti->stop_requested) break;
     {
       /* between steps (level-set reinitialisation): if the state changed,
          restart IDA from it at order 1 with the last step size */

@@ -307,6 +307,20 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpIntegratorRequestStop(SlumpIntegrator ti)
+{
+  PetscFunctionBeginUser;
+  ti->stop_requested = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpIntegratorGetStopRequested(SlumpIntegrator ti, PetscBool *stop)
+{
+  PetscFunctionBeginUser;
+  *stop = ti->stop_requested;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpIntegratorSetStepMonitor(SlumpIntegrator ti, SlumpStepMonitorFn fn, void *ctx)
 {
   PetscFunctionBeginUser;
@@ -329,7 +343,8 @@ PetscErrorCode SlumpIntegratorSolve(SlumpIntegrator ti, Vec X)
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemGetEffects(ti->prob, &effects));
   PetscCheck(effects & (SLUMP_EFFECT_INERTIA | SLUMP_EFFECT_FREE_SURFACE), PetscObjectComm((PetscObject)X), PETSC_ERR_USER_INPUT, "Time integration needs the inertia or free-surface effect (a differential unknown); a scene without either is solved as a steady state");
-  ti->t = ti->t0;
+  ti->t              = ti->t0;
+  ti->stop_requested = PETSC_FALSE;
   if (ti->type == SLUMP_INTEGRATOR_IDA) PetscCall(SlumpIntegratorSolve_IDA(ti, X));
   else PetscCall(SlumpIntegratorSolve_BDF2(ti, X));
   PetscCall(SlumpProblemGetCounters(ti->prob, &ti->stats.res_evals, &ti->stats.jac_evals));
@@ -339,6 +354,8 @@ PetscErrorCode SlumpIntegratorSolve(SlumpIntegrator ti, Vec X)
 PetscErrorCode SlumpIntegratorGetStats(SlumpIntegrator ti, SlumpStats *stats)
 {
   PetscFunctionBeginUser;
+  /* current also while a solve is under way or after it failed */
+  PetscCall(SlumpProblemGetCounters(ti->prob, &ti->stats.res_evals, &ti->stats.jac_evals));
   *stats = ti->stats;
   PetscFunctionReturn(0);
 }

@@ -78,6 +78,10 @@ PETSC_EXTERN PetscErrorCode SlumpIntegratorSetCharacteristicStress(SlumpIntegrat
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetArrestThreshold(SlumpIntegrator ti, PetscReal threshold, PetscBool stop);
 /* Earliest arrest time over the criteria (-1 if none). */
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetArrestTime(SlumpIntegrator ti, PetscReal *tarrest);
+/* From a monitor: end the solve after the current step (and its outputs),
+   as an interrupted run does; SlumpIntegratorGetStopRequested tells. */
+PETSC_EXTERN PetscErrorCode SlumpIntegratorRequestStop(SlumpIntegrator ti);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetStopRequested(SlumpIntegrator ti, PetscBool *stop);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetStepMonitor(SlumpIntegrator ti, SlumpStepMonitorFn fn, void *ctx);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetOutputMonitor(SlumpIntegrator ti, SlumpOutputMonitorFn fn, void *ctx);
 /* Integrate from t0 (X: initial velocity; on return the state at the end). */

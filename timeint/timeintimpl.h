@@ -54,6 +54,7 @@ struct _n_SlumpIntegrator {
   SlumpArrestStop      arrest_stop;
   PetscReal            stress_scale;
   SlumpStats           stats;
+  PetscBool            stop_requested; /* SlumpIntegratorRequestStop: end after the current step */
   SlumpStepMonitorFn   stepmon;
   void                *stepctx;
   SlumpOutputMonitorFn outmon;
