@@ -240,6 +240,19 @@ static PetscErrorCode WriteSummary(RunCtx *r, const char dir[], const SlumpRunRe
   PetscFunctionReturn(0);
 }
 
+static PetscBool setup_only = PETSC_FALSE;
+
+PetscErrorCode SlumpRunSetUp(MPI_Comm comm)
+{
+  PetscErrorCode ierr;
+  PetscFunctionBeginUser;
+  setup_only = PETSC_TRUE;
+  ierr       = SlumpRunOne(comm, PETSC_FALSE, NULL);
+  setup_only = PETSC_FALSE;
+  PetscCall(ierr);
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
 {
   char            scenename[64] = "couette_cessation", dir[PETSC_MAX_PATH_LEN] = "";
@@ -333,7 +346,9 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   {
     PetscBool help;
     PetscCall(PetscOptionsHasHelp(NULL, &help));
-    if (help) {
+    /* set up, nothing written: the options every part of the run reads */
+    if (!help) PetscCall(SlumpOptionsCheck(comm, SLUMP_OPTIONS_SETUP));
+    if (help || setup_only) {
       PetscCall(SlumpIntegratorDestroy(&ti));
       PetscCall(SlumpSceneDestroy(&scene));
       PetscCall(SlumpProblemDestroy(&prob));
@@ -532,9 +547,17 @@ cleanup:
 PetscErrorCode SlumpRun(MPI_Comm comm)
 {
   PetscBool sweep;
+  PetscBool help, sweep2, ranks;
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsHasName(NULL, NULL, "-sweep", &sweep));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-sweep2", &sweep2));
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-sweep_ranks", &ranks));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  if (!help) PetscCall(SlumpOptionsCheck(comm, SLUMP_OPTIONS_START));
+  PetscCheck(sweep || !(sweep2 || ranks), comm, PETSC_ERR_USER_INPUT, "%s is given without -sweep; give -sweep OPTION:v1,v2,... first", sweep2 ? "-sweep2" : "-sweep_ranks");
   if (sweep) PetscCall(SlumpSweep(comm));
   else PetscCall(SlumpRunOne(comm, PETSC_TRUE, NULL));
+  /* every option given was read by some part of the run */
+  if (!help) PetscCall(SlumpOptionsCheck(comm, SLUMP_OPTIONS_END));
   PetscFunctionReturn(0);
 }

@@ -75,10 +75,37 @@ PETSC_EXTERN PetscErrorCode SlumpRun(MPI_Comm comm);
 /* One run on comm: parse options, run the scene, write its outputs; banner:
    print the set-up and the summary line; res (may be NULL) gets the numbers. */
 PETSC_EXTERN PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res);
+/* Read and check every option of one run and set it up, without running it
+   or writing anything (the sweep checks its swept options with it). */
+PETSC_EXTERN PetscErrorCode SlumpRunSetUp(MPI_Comm comm);
 /* -sweep NAME:v1,v2,... [-sweep2 NAME2:w1,w2,...]: one run per value (or
    pair), -sweep_ranks k ranks each on its own sub-communicator, one row per
    run in <output_dir>/sweep.csv as runs finish. */
 PETSC_EXTERN PetscErrorCode SlumpSweep(MPI_Comm comm);
+/* Every option the program reads, from its sources (optiontable.c, made by
+   cases/options_table.py at build time); the last entry has name NULL. kind:
+   real, int, bool, string, choice, reals, ints, strings, flag. */
+typedef struct {
+  const char *name, *kind, *help, *group;
+} SlumpOptionInfo;
+PETSC_EXTERN const SlumpOptionInfo SlumpOptionTable[];
+/* Options given but not read are errors (options.c). At the start: unknown
+   names, options of PETSc objects slump does not create, missing values and
+   non-finite numbers; once the run is set up (nothing written yet): options
+   of the table the set-up should have read; at the end: any option the run
+   did not read. -options_ignore_unused turns the unread ones off. */
+typedef enum { SLUMP_OPTIONS_START, SLUMP_OPTIONS_SETUP, SLUMP_OPTIONS_END } SlumpOptionsStage;
+PETSC_EXTERN PetscErrorCode SlumpOptionsCheck(MPI_Comm comm, SlumpOptionsStage stage);
+/* Is the option (without its dash) one slump or the PETSc solvers it
+   creates may read? */
+PETSC_EXTERN PetscBool SlumpOptionKnown(const char name[]);
+/* Is it read only when the run's solvers are created (KINSOL, steady
+   continuation, PETSc solver options), so that a set-up cannot tell? */
+PETSC_EXTERN PetscBool SlumpOptionReadLate(const char name[]);
+/* An error naming `what` and the closest known option unless name is known. */
+PETSC_EXTERN PetscErrorCode SlumpOptionsCheckName(MPI_Comm comm, const char what[], const char name[]);
+/* -help: the program's options by group (PETSc's under -help petsc). */
+PETSC_EXTERN PetscErrorCode SlumpPrintHelp(MPI_Comm comm);
 /* The first message of the last error (empty if none), and its reset. */
 PETSC_EXTERN const char    *SlumpLastErrorMessage(void);
 PETSC_EXTERN void           SlumpClearLastError(void);

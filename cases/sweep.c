@@ -30,7 +30,7 @@ typedef struct {
 static PetscErrorCode SweepListParse(MPI_Comm comm, const char opt[], const char text[], SweepList *l)
 {
   const char *colon = strchr(text, ':');
-  char       *s, *save = NULL;
+  char       *s;
   PetscFunctionBeginUser;
   PetscCall(PetscMemzero(l, sizeof(*l)));
   PetscCheck(colon && colon != text && colon[1], comm, PETSC_ERR_USER_INPUT, "%s takes OPTION:value1,value2,... (an option name without its dash, a colon, comma-separated values); got '%s'", opt, text);
@@ -38,9 +38,14 @@ static PetscErrorCode SweepListParse(MPI_Comm comm, const char opt[], const char
   PetscCheck((size_t)(colon - text) < sizeof(l->name), comm, PETSC_ERR_USER_INPUT, "%s: the option name is too long", opt);
   PetscCall(PetscStrncpy(l->name, text, (size_t)(colon - text) + 1));
   PetscCall(PetscStrncpy(l->spec, colon + 1, sizeof(l->spec)));
-  for (s = strtok_r(l->spec, ",", &save); s; s = strtok_r(NULL, ",", &save)) {
+  for (s = l->spec;;) {
+    char *comma = strchr(s, ',');
+    if (comma) *comma = 0;
+    PetscCheck(s[0], comm, PETSC_ERR_USER_INPUT, "%s %s: value %d is empty; give comma-separated values without empty ones", opt, l->name, l->n + 1);
     PetscCheck(l->n < SWEEP_MAX_VALUES, comm, PETSC_ERR_USER_INPUT, "%s: at most %d values", opt, SWEEP_MAX_VALUES);
     l->value[l->n++] = s;
+    if (!comma) break;
+    s = comma + 1;
   }
   PetscCheck(l->n > 0, comm, PETSC_ERR_USER_INPUT, "%s: no values after '%s:'", opt, l->name);
   PetscFunctionReturn(0);
@@ -167,7 +172,7 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
   SweepList    *l;
   int           nl = 1, nruns, ngroups, group, nfailed = 0;
   PetscInt      k = 1;
-  PetscBool     has2, set, hasfields, hasquiet;
+  PetscBool     has2, set, hasfields, hasquiet, overwrite = PETSC_FALSE, interrupted = PETSC_FALSE;
   PetscMPIInt   rank, size, grank;
   MPI_Comm      sub;
   PetscLogDouble t0, t1;
@@ -182,6 +187,7 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
   PetscCall(PetscOptionsInt("-sweep_ranks", "Ranks per run (the P ranks make P/k groups)", "", k, &k, NULL));
   PetscCall(PetscOptionsString("-scene", "Scene", "", scenename, scenename, sizeof(scenename), NULL));
   PetscCall(PetscOptionsString("-output_dir", "Sweep directory (default out/sweep_<scene>)", "", dir, dir, sizeof(dir), &set));
+  PetscCall(PetscOptionsBool("-output_overwrite", "Write into a sweep directory another live sweep holds", "", overwrite, &overwrite, NULL));
   PetscOptionsEnd();
   PetscCall(SweepListParse(comm, "-sweep", spec[0], &l[0]));
   if (has2) {
@@ -192,6 +198,7 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
   for (int j = 0; j < nl; ++j) {
     PetscCheck(strcmp(l[j].name, "output_dir") && strcmp(l[j].name, "sweep_ranks"), comm, PETSC_ERR_USER_INPUT, "-sweep%s: '%s' cannot be swept; sweep any scene, rheology or solver option", j ? "2" : "", l[j].name);
   }
+  for (int j = 0; j < nl; ++j) PetscCall(SlumpOptionsCheckName(comm, j ? "-sweep2" : "-sweep", l[j].name));
   PetscCheck(k >= 1 && k <= size && size % k == 0, comm, PETSC_ERR_USER_INPUT, "-sweep_ranks must divide the number of ranks (%d); got %d", (int)size, (int)k);
   if (!set) PetscCall(PetscSNPrintf(dir, sizeof(dir), "out/sweep_%s", scenename));
   nruns   = l[0].n * (nl > 1 ? l[1].n : 1);
@@ -206,14 +213,37 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
   PetscCall(PetscOptionsHasName(NULL, NULL, "-quiet", &hasquiet));
   if (!hasquiet) PetscCall(PetscOptionsSetValue(NULL, "-quiet", "true"));
 
+  /* before the first run: the whole set-up with the first values, so that
+     a swept option this scene and these settings do not read (N identical
+     runs) and any other mistake are refused with nothing written */
+  for (int j = 0; j < nl; ++j) {
+    char opt[160];
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s", l[j].name));
+    PetscCall(PetscOptionsSetValue(NULL, opt, l[j].value[0]));
+  }
+  PetscCall(SlumpRunSetUp(sub));
+  for (int j = 0; j < nl; ++j) {
+    char      opt[160];
+    PetscBool used;
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s", l[j].name));
+    PetscCall(PetscOptionsUsed(NULL, opt, &used));
+    PetscCheck(used || SlumpOptionReadLate(l[j].name), comm, PETSC_ERR_USER_INPUT, "-sweep%s: option -%s is not read by scene %s with these settings (every run would be the same); sweep an option the run reads", j ? "2" : "", l[j].name, scenename);
+  }
+
   PetscCall(SlumpMakeDirectory(comm, dir));
+  PetscCall(SlumpOutputLock(comm, dir, overwrite));
   PetscCall(PetscSNPrintf(path, sizeof(path), "%s/sweep.csv", dir));
-  if (!rank) {
-    FILE *fp = fopen(path, "w");
-    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Cannot write %s", path);
-    Header(row, sizeof(row), l, nl);
-    fputs(row, fp);
-    fclose(fp);
+  {
+    FILE *fp  = NULL;
+    int   err = 0;
+    if (!rank) {
+      Header(row, sizeof(row), l, nl);
+      err = SlumpFileOpen(path, &fp);
+      if (!err) err = SlumpFilePrintf(fp, "%s", row);
+      if (!err) err = SlumpFileClose(&fp);
+      else (void)SlumpFileClose(&fp);
+    }
+    PetscCall(SlumpFileCheck(comm, err, path));
   }
   PetscCall(PetscPrintf(comm, "slump %s: sweep of %d runs of %s over %s%s%s, %d group%s of %d rank%s; rows in %s\n", SLUMP_VERSION_STRING, nruns, scenename, l[0].name, nl > 1 ? " x " : "", nl > 1 ? l[1].name : "", ngroups, ngroups > 1 ? "s" : "", (int)k, k > 1 ? "s" : "", path));
   PetscCallMPI(MPI_Barrier(comm));
@@ -241,7 +271,7 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
     ok   = ierr ? PETSC_FALSE : PETSC_TRUE;
     if (!ok) {
       /* the reason: the error's first message (every rank of the group saw it) */
-      status = ierr == PETSC_ERR_NOT_CONVERGED ? "not_converged" : (ierr == PETSC_ERR_USER_INPUT || ierr == PETSC_ERR_ARG_WRONG || ierr == PETSC_ERR_ARG_OUTOFRANGE ? "invalid" : "error");
+      status = ierr == PETSC_ERR_SIG ? "interrupted" : ierr == PETSC_ERR_NOT_CONVERGED ? "not_converged" : (ierr == PETSC_ERR_USER_INPUT || ierr == PETSC_ERR_ARG_WRONG || ierr == PETSC_ERR_ARG_OUTOFRANGE ? "invalid" : "error");
       PetscCall(PetscSNPrintf(reason, sizeof(reason), "%s", SlumpLastErrorMessage()[0] ? SlumpLastErrorMessage() : "unknown error"));
       if (!grank) ++nfailed; /* counted once per group */
     } else if (res.narrest && res.t_arrest < 0) {
@@ -257,6 +287,15 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
       else printf("sweep: run %d/%d (%s) %s: %s\n", run + 1, nruns, vals, status, reason);
       fflush(stdout);
     }
+    /* SIGINT/SIGTERM: the run in progress ended after its step; no more runs */
+    {
+      int sig = SlumpInterruptSignal();
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &sig, 1, MPI_INT, MPI_MAX, sub));
+      if (sig) {
+        interrupted = PETSC_TRUE;
+        break;
+      }
+    }
   }
   PetscCallMPI(MPI_Barrier(comm));
   PetscCall(PetscTime(&t1));
@@ -264,5 +303,8 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
   PetscCall(PetscPrintf(comm, "sweep: %d runs, %d failed (see the status column), %.2f s on %d rank%s; rows in %s\n", nruns, nfailed, (double)(t1 - t0), (int)size, size > 1 ? "s" : "", path));
   PetscCallMPI(MPI_Comm_free(&sub));
   PetscCall(PetscFree(l));
+  PetscCall(SlumpOutputUnlock(comm, dir));
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &interrupted, 1, MPIU_BOOL, MPI_LOR, comm));
+  PetscCheck(!interrupted, comm, PETSC_ERR_SIG, "Sweep interrupted by a signal; the rows of the runs that ended are in %s", path);
   PetscFunctionReturn(0);
 }
