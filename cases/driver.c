@@ -31,7 +31,7 @@ PetscErrorCode SlumpErrorHandler(MPI_Comm comm, int line, const char *fun, const
       if (*c == '\n' || *c == '\r') *c = ' ';
   }
   /* PETSC_ERR_USER: PETSc's own "Unknown option x for -name. Available options: ..." */
-  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_SIG) {
+  if (n == PETSC_ERR_USER_INPUT || n == PETSC_ERR_USER || n == PETSC_ERR_FILE_OPEN || n == PETSC_ERR_NOT_CONVERGED || n == PETSC_ERR_ARG_WRONG || n == PETSC_ERR_ARG_OUTOFRANGE || n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FILE_UNEXPECTED || n == PETSC_ERR_SIG) {
     if (p == PETSC_ERROR_INITIAL) {
       MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
       if (!rank || comm == PETSC_COMM_SELF) {

@@ -133,6 +133,13 @@ static PetscErrorCode CheckValues(MPI_Comm comm)
           PetscCall(PetscFree(all));
           SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", msg);
         }
+        /* products and squares of larger numbers overflow in the kernels */
+        if (end != piece && !*end && (fabs(v) > 1e100 || (v != 0 && fabs(v) < 1e-100))) {
+          char msg[1200];
+          PetscCall(PetscSNPrintf(msg, sizeof(msg), "Option %s = %s is outside the magnitudes slump computes with (0 or 1e-100 to 1e100)", name, tok));
+          PetscCall(PetscFree(all));
+          SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", msg);
+        }
       }
     }
   }
@@ -147,7 +154,7 @@ PetscBool SlumpOptionReadLate(const char name[])
   if (HasPrefix(name, Created)) return PETSC_TRUE;
   for (const SlumpOptionInfo *o = SlumpOptionTable; o->name; ++o)
     if (!strcmp(o->name + 1, name)) {
-      if (!strcmp(o->group, "Newton (KINSOL)") || !strcmp(o->group, "Steady solve")) return PETSC_TRUE;
+      if (o->late || !strcmp(o->group, "Newton (KINSOL)") || !strcmp(o->group, "Steady solve")) return PETSC_TRUE;
       early = PETSC_TRUE;
     }
   return !early;
@@ -160,6 +167,7 @@ PetscErrorCode SlumpOptionsCheck(MPI_Comm comm, SlumpOptionsStage stage)
   PetscBool ignore = PETSC_FALSE;
   char      msg[1024] = "";
   PetscFunctionBeginUser;
+  /* option -options_ignore_unused: allow options nothing reads (a shared options file, say) */
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-options_ignore_unused", &ignore, NULL));
   if (stage == SLUMP_OPTIONS_START) PetscCall(CheckValues(comm));
   if (ignore) PetscFunctionReturn(0);

@@ -21,8 +21,10 @@ def main():
         s = next(csv.DictReader(f))
     crit = []
     for k, v in s.items():
-        if k.startswith("t_arrest_") and float(v) >= 0:
-            name = k[len("t_arrest_"):]
+        # an arrest criterion's columns come in pairs, t_arrest_NAME and
+        # threshold_NAME; t_arrest_exact (the exact model's time) has no threshold
+        name = k[len("t_arrest_"):]
+        if k.startswith("t_arrest_") and "threshold_" + name in s and v and float(v) >= 0:
             crit.append((name, float(v), float(s["threshold_" + name])))
     if not crit:
         print("no arrest time in %s/summary.csv" % a.dir)

@@ -84,9 +84,12 @@ PETSC_EXTERN PetscErrorCode SlumpRunSetUp(MPI_Comm comm);
 PETSC_EXTERN PetscErrorCode SlumpSweep(MPI_Comm comm);
 /* Every option the program reads, from its sources (optiontable.c, made by
    cases/options_table.py at build time); the last entry has name NULL. kind:
-   real, int, bool, string, choice, reals, ints, strings, flag. */
+   real, int, bool, string, choice, reals, ints, strings, flag. An option
+   read with PetscOptionsGet*() gets its help from a comment
+   "option -name [late]: help" before the call. */
 typedef struct {
   const char *name, *kind, *help, *group;
+  PetscBool   late; /* read only after the run is set up (marked "option -name late:" in a comment) */
 } SlumpOptionInfo;
 PETSC_EXTERN const SlumpOptionInfo SlumpOptionTable[];
 /* Options given but not read are errors (options.c). At the start: unknown

@@ -6,7 +6,7 @@ channel at rest), with the cost of each run and the smallest step in the last
 decade of kinetic-energy decay before arrest. Writes docs/studies/arrest_*.csv
 and the h(t) figures for Couette at m = 1e3 and 1e6.
 
-usage: python3 cases/study_arrest.py [--slump build/slump] [--out docs/studies]"""
+usage: python3 cases/study_arrest.py [--slump build/slump] [--out out/studies]"""
 import argparse
 import csv
 import os
@@ -40,7 +40,7 @@ def run(slump, scene, opts, d):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--slump", default="build/slump")
-    ap.add_argument("--out", default="docs/studies")
+    ap.add_argument("--out", default="out/studies", help="where the CSV files and figures go (docs/studies for the documentation's)")
     a = ap.parse_args()
     slump = os.path.abspath(a.slump)
     os.makedirs(a.out, exist_ok=True)

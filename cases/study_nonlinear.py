@@ -6,7 +6,7 @@ atol 1e-5: steps, nonlinear (convergence) failures, error-test failures,
 residual and Jacobian evaluations, wall time and the arrest time.
 Writes docs/studies/nonlinear_solvers.csv.
 
-usage: python3 cases/study_nonlinear.py [--slump build/slump] [--out docs/studies]"""
+usage: python3 cases/study_nonlinear.py [--slump build/slump] [--out out/studies]"""
 import argparse
 import csv
 import os
@@ -17,7 +17,7 @@ import tempfile
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--slump", default="build/slump")
-    ap.add_argument("--out", default="docs/studies")
+    ap.add_argument("--out", default="out/studies", help="where the CSV file goes (docs/studies for the documentation's)")
     a = ap.parse_args()
     rows = []
     print("%-8s %-10s %6s %8s %8s %8s %8s %8s %10s" % ("m", "solver", "steps", "nl fails", "etf", "res", "jac", "wall s", "arrest"))

@@ -16,7 +16,7 @@ and gnuplot figures into docs/studies/ and prints the tables.
    (decades) whose relative L2 error is <= 1e-3, with the Newton iterations
    (continuation from 1e-1 included) and the wall time of that run.
 
-usage: python3 cases/study_regularisation.py [--slump build/slump] [--out docs/studies]
+usage: python3 cases/study_regularisation.py [--slump build/slump] [--out out/studies]
 Needs gnuplot (Debian package gnuplot-nox) for the figures.
 """
 import argparse
@@ -84,7 +84,7 @@ def sweep(slump, out, name, scene, base, param, values, meshes, meshopt, start_o
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--slump", default="build/slump")
-    ap.add_argument("--out", default="docs/studies")
+    ap.add_argument("--out", default="out/studies", help="where the CSV files and figures go (docs/studies for the documentation's)")
     a = ap.parse_args()
     os.makedirs(a.out, exist_ok=True)
     slump = os.path.abspath(a.slump)

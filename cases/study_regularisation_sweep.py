@@ -7,7 +7,7 @@ Bercovier-Engelman eps = 1e-1 .. 1e-6. Each (scene, model) is one
 docs/studies/regsweep_<scene>_<model>.csv and the figures to
 docs/regsweep_*.png.
 
-usage: python3 cases/study_regularisation_sweep.py [--slump build/slump] [--ranks 2] [--docs docs]
+usage: python3 cases/study_regularisation_sweep.py [--slump build/slump] [--ranks 2] [--docs out/docs]
 """
 import argparse
 import os
@@ -28,7 +28,7 @@ def main():
     ap.add_argument("--slump", default=os.path.join(HERE, "..", "build", "slump"))
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--ranks", type=int, default=2)
-    ap.add_argument("--docs", default=os.path.join(HERE, "..", "docs"))
+    ap.add_argument("--docs", default="out/docs", help="where CSV files (DOCS/studies) and figures go; docs for the documentation's")
     ap.add_argument("--work", default="out/study_regsweep")
     a = ap.parse_args()
     os.makedirs(os.path.join(a.docs, "studies"), exist_ok=True)

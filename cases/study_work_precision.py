@@ -17,7 +17,7 @@ bdf2_linesearch (stress-velocity with the line search).
 IDA runs use the default absolute tolerance (1e-3 rtol max|u(0)|).
 
 usage: python3 cases/study_work_precision.py couette|duct|poiseuille [--ranks 2]
-       [--meshes 32] [--methods ida,ida_primal,bdf2,bdf2_primal] [--docs DIR]
+       [--meshes 32] [--methods ida,ida_primal,bdf2,bdf2_primal] [--docs out/docs] [--quick]
 """
 import argparse
 import csv
@@ -66,13 +66,18 @@ def main():
     ap.add_argument("--slump", default=os.path.join(HERE, "..", "build", "slump"))
     ap.add_argument("--mpiexec", default="mpirun")
     ap.add_argument("--ranks", type=int, default=2)
-    ap.add_argument("--docs", default=os.path.join(HERE, "..", "docs"))
+    ap.add_argument("--docs", default="out/docs", help="where CSV files (DOCS/studies) and figures go; docs for the documentation's")
     ap.add_argument("--work", default="out/study_wp")
     ap.add_argument("--methods", default="ida,ida_primal,bdf2,bdf2_primal,bdf2_linesearch", help="comma-separated subset of ida, ida_primal, ida_linesearch, bdf2, bdf2_primal, bdf2_linesearch")
     ap.add_argument("--meshes", default=None, help="the meshes of the sweep (default: the set-up's)")
-    ap.add_argument("--reuse", action="store_true", help="keep the CSV files of methods already in docs/studies")
+    ap.add_argument("--reuse", action="store_true", help="keep the CSV files of methods already in DOCS/studies")
+    ap.add_argument("--quick", action="store_true", help="a first look: the set-up's coarsest mesh, IDA and BDF2 only (unless --meshes/--methods say otherwise)")
     a = ap.parse_args()
     s = dict(SETUPS[a.case])
+    if a.quick:
+        s["meshes"] = str(s["meshes"]).split(",")[0]
+        if "--methods" not in sys.argv:
+            a.methods = "ida,bdf2"
     if a.meshes:
         s["meshes"] = a.meshes
     mpi = [a.mpiexec, "--oversubscribe", "--allow-run-as-root", "-n", str(a.ranks)]

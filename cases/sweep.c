@@ -216,17 +216,31 @@ PetscErrorCode SlumpSweep(MPI_Comm comm)
   /* before the first run: the whole set-up with the first values, so that
      a swept option this scene and these settings do not read (N identical
      runs) and any other mistake are refused with nothing written */
-  for (int j = 0; j < nl; ++j) {
-    char opt[160];
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s", l[j].name));
-    PetscCall(PetscOptionsSetValue(NULL, opt, l[j].value[0]));
+  {
+    /* the first values that set up (an invalid value becomes its runs'
+       rows); if none does, the last attempt's error is the sweep's */
+    const int ntry = PetscMax(l[0].n, nl > 1 ? l[1].n : 1);
+    for (int t = 0; t < ntry; ++t) {
+      PetscErrorCode ierr;
+      for (int j = 0; j < nl; ++j) {
+        char opt[160];
+        PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s", l[j].name));
+        PetscCall(PetscOptionsSetValue(NULL, opt, l[j].value[PetscMin(t, l[j].n - 1)]));
+      }
+      if (t == ntry - 1) {
+        PetscCall(SlumpRunSetUp(sub));
+        break;
+      }
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      ierr = SlumpRunSetUp(sub);
+      PetscCall(PetscPopErrorHandler());
+      PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &ierr, 1, MPI_INT, MPI_MAX, comm));
+      if (!ierr) break;
+    }
   }
-  PetscCall(SlumpRunSetUp(sub));
   for (int j = 0; j < nl; ++j) {
-    char      opt[160];
     PetscBool used;
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s", l[j].name));
-    PetscCall(PetscOptionsUsed(NULL, opt, &used));
+    PetscCall(PetscOptionsUsed(NULL, l[j].name, &used)); /* the name without its dash */
     PetscCheck(used || SlumpOptionReadLate(l[j].name), comm, PETSC_ERR_USER_INPUT, "-sweep%s: option -%s is not read by scene %s with these settings (every run would be the same); sweep an option the run reads", j ? "2" : "", l[j].name, scenename);
   }
 

@@ -3,6 +3,7 @@
 #include "slump.h"
 #include <metis.h>
 #include <unistd.h>
+#include <sys/stat.h>
 
 /* Label boundary faces of a rectangle by position: bottom, right, top, left (value 1). */
 static PetscErrorCode LabelRectangleFaces(DM dm, const PetscReal lower[2], const PetscReal upper[2])
@@ -83,19 +84,38 @@ PetscErrorCode SlumpMeshCreateRectangle(MPI_Comm comm, PetscInt nx, PetscInt ny,
 
 PetscErrorCode SlumpMeshCreateGmsh(MPI_Comm comm, const char filename[], DM *dm)
 {
-  PetscMPIInt rank;
-  int         readable = 0;
-  DMLabel     bnd;
+  PetscMPIInt    rank;
+  int            state = 0; /* 0 readable, 1 unreadable, 2 a directory, 3 empty, 4 not a Gmsh file */
+  DMLabel        bnd;
+  PetscErrorCode ierr;
 
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (rank == 0) readable = access(filename, R_OK) == 0;
-  PetscCallMPI(MPI_Bcast(&readable, 1, MPI_INT, 0, comm));
-  PetscCheck(readable, comm, PETSC_ERR_FILE_OPEN, "Cannot read the mesh file '%s' (-mesh_file); give the path of a readable Gmsh .msh file", filename);
-  /* physical names become labels of the same name */
+  if (rank == 0) {
+    struct stat st;
+    if (stat(filename, &st) || access(filename, R_OK)) state = 1;
+    else if (S_ISDIR(st.st_mode)) state = 2;
+    else if (!S_ISREG(st.st_mode) || st.st_size == 0) state = 3;
+    else {
+      char  head[16] = "";
+      FILE *fp       = fopen(filename, "r");
+      if (!fp || !fgets(head, sizeof(head), fp) || strncmp(head, "$MeshFormat", 11)) state = 4;
+      if (fp) fclose(fp);
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&state, 1, MPI_INT, 0, comm));
+  PetscCheck(state != 1, comm, PETSC_ERR_FILE_OPEN, "Cannot read the mesh file '%s' (-mesh_file); give the path of a readable Gmsh .msh file", filename);
+  PetscCheck(state != 2, comm, PETSC_ERR_FILE_OPEN, "The mesh file '%s' (-mesh_file) is a directory; give the path of a Gmsh .msh file", filename);
+  PetscCheck(state != 3, comm, PETSC_ERR_FILE_OPEN, "The mesh file '%s' (-mesh_file) is empty; give a Gmsh .msh file", filename);
+  PetscCheck(state != 4, comm, PETSC_ERR_FILE_OPEN, "The mesh file '%s' (-mesh_file) is not a Gmsh .msh file (it does not start with $MeshFormat)", filename);
+  /* physical names become labels of the same name; a file Gmsh's reader
+     cannot parse is one sentence, not PETSc's traceback */
   PetscCall(PetscOptionsSetValue(NULL, "-dm_plex_gmsh_use_regions", "true"));
-  PetscCall(DMPlexCreateGmshFromFile(comm, filename, PETSC_TRUE, dm));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = DMPlexCreateGmshFromFile(comm, filename, PETSC_TRUE, dm);
+  PetscCall(PetscPopErrorHandler());
   PetscCall(PetscOptionsClearValue(NULL, "-dm_plex_gmsh_use_regions"));
+  PetscCheck(!ierr, comm, PETSC_ERR_FILE_UNEXPECTED, "The mesh file '%s' (-mesh_file) could not be read as a Gmsh mesh (format 2.2 or 4.1, triangles, physical names for the boundaries); check it with gmsh", filename);
   PetscCall(PetscObjectSetName((PetscObject)*dm, "mesh"));
   PetscCall(DMCreateLabel(*dm, "boundary"));
   PetscCall(DMGetLabel(*dm, "boundary", &bnd));

@@ -1013,14 +1013,36 @@ INPUT_CASES = [
     ("bad_plasticity", ["-scene", "chupin_column", "-plasticity", "mohr"], "-plasticity"),
     ("bad_arrest", ["-scene", "couette_cessation", "-arrest", "speed:1e-3"], "-arrest"),
     ("bad_creep", ["-scene", "couette_cessation", "-arrest", "kinetic_energy:1:creep"], "-arrest"),
+    # mistakes that ran silently with defaults (issue 32)
+    ("misspelt_option", ["-scene", "couette_cessation", "-time_finall", "1"], "-time_final"),
+    ("misspelt_rheology", ["-scene", "poiseuille", "-rheology_viscositty", "2"], "-rheology_viscosity"),
+    ("positional_scene", ["couette_cessation"], "-scene couette_cessation"),
+    ("missing_value", ["-scene", "couette_cessation", "-bn"], "-bn"),
+    ("missing_value_mid", ["-scene", "couette_cessation", "-bn", "-quiet"], "-bn"),
+    ("option_not_read", ["-scene", "couette_cessation", "-cavity_lid", "regularised"], "-cavity_lid"),
+    ("snes_option", ["-scene", "couette_cessation", "-snes_rtol", "1e-3"], "-snes_rtol"),
+    ("ts_option", ["-scene", "couette_cessation", "-ts_type", "bdf"], "-ts_type"),
+    ("sweep_unread", ["-scene", "couette_cessation", "-sweep", "cavity_lid:regularised,smooth"], "cavity_lid"),
+    ("sweep_unknown", ["-scene", "couette_cessation", "-sweep", "bnn:1,2"], "-bn"),
+    ("sweep2_alone", ["-scene", "couette_cessation", "-sweep2", "bn:1,2"], "-sweep2"),
+    ("sweep_empty_value", ["-scene", "couette_cessation", "-sweep", "bn:1,,2"], "-sweep"),
+    ("sweep_no_values", ["-scene", "couette_cessation", "-sweep", "bn:"], "-sweep"),
+    # bad values that reached the solver
+    ("time_final_inf", ["-scene", "couette_cessation", "-time_final", "inf"], "-time_final"),
+    ("bn_inf", ["-scene", "couette_cessation", "-bn", "inf"], "-bn"),
+    ("bn_nan", ["-scene", "couette_cessation", "-bn", "nan"], "-bn"),
+    ("bn_huge", ["-scene", "couette_cessation", "-bn", "1e300"], "-bn"),
 ]
 
 
 def test_input():
     """Bad input: non-zero exit, exactly one line on stderr naming the option,
     no crash (no PETSc traceback), and no output directory left behind."""
-    w = work("input")
-    for name, args, word in INPUT_CASES:
+    check_refused(work("input"), INPUT_CASES)
+
+
+def check_refused(w, cases):
+    for name, args, word in cases:
         out = os.path.join(w, name)
         cmd = [ARGS.slump] + args + ["-output_dir", out]
         p = subprocess.run(cmd, capture_output=True, text=True)
@@ -1034,6 +1056,180 @@ def test_input():
             fail("%s: expected one sentence naming %s on stderr, got:\n%s" % (name, word, p.stderr))
         if os.path.exists(out):
             fail("%s: output directory %s was created" % (name, out))
+
+
+def input_fixtures(w):
+    """Bad files for the input tests: garbage bytes, a text file that is not
+    options, an empty and a malformed mesh file, and a directory."""
+    os.makedirs(w, exist_ok=True)
+    paths = {k: os.path.join(w, k) for k in ("garbage.opts", "text.opts", "empty.msh", "bad.msh", "a_directory")}
+    with open(paths["garbage.opts"], "wb") as f:
+        f.write(bytes(range(256)) * 4)
+    with open(paths["text.opts"], "w") as f:
+        f.write("# a comment\n-time_final 0.1\nthis line is not an option\n")
+    open(paths["empty.msh"], "w").close()
+    with open(paths["bad.msh"], "w") as f:
+        f.write("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\nthis is not a mesh\n")
+    os.makedirs(paths["a_directory"], exist_ok=True)
+    return paths
+
+
+INPUT_FILE_CASES = [
+    # (name, args with {file} placeholders, word the sentence must contain)
+    ("garbage_options_file", ["-scene", "couette_cessation", "-options_file", "{garbage.opts}"], "-options_file"),
+    ("text_options_file", ["-scene", "couette_cessation", "-options_file", "{text.opts}"], "-options_file"),
+    ("directory_options_file", ["-scene", "couette_cessation", "-options_file", "{a_directory}"], "-options_file"),
+    ("empty_mesh_file", ["-scene", "mms_stokes", "-mesh_file", "{empty.msh}"], "-mesh_file"),
+    ("malformed_mesh_file", ["-scene", "mms_stokes", "-mesh_file", "{bad.msh}"], "-mesh_file"),
+    ("directory_mesh_file", ["-scene", "mms_stokes", "-mesh_file", "{a_directory}"], "-mesh_file"),
+]
+
+
+def test_input_files():
+    """Bad files (options, meshes): as test_input, one sentence and nothing written."""
+    w = work("input_files")
+    paths = input_fixtures(os.path.join(w, "fixtures"))
+    cases = [(n, [paths[a[1:-1]] if a.startswith("{") else a for a in args], word) for n, args, word in INPUT_FILE_CASES]
+    check_refused(w, cases)
+
+
+def lines_whole(path, ncols):
+    """Every line of a CSV file has the header's number of fields."""
+    with open(path) as f:
+        rows = list(csv.reader(f))
+    bad = [r for r in rows if len(r) != ncols]
+    if bad:
+        fail("%s: %d of %d lines are not whole (%d fields expected), e.g. %s" % (path, len(bad), len(rows), ncols, bad[0]))
+    return rows
+
+
+def test_output_full_disk():
+    """A write that fails (the file is /dev/full: no space left) ends the run
+    with exit 1 and one sentence naming the file, for every output file,
+    without a crash; the run's other outputs are closed (no lock left)."""
+    w = work("full_disk")
+    for name, scene, extra in (("series.csv", "couette_cessation", []), ("steps.csv", "couette_cessation", []),
+                               ("summary.csv.part", "couette_cessation", []), ("fields.h5", "couette_cessation", []),
+                               ("fields.xmf.part", "couette_cessation", []),
+                               ("interface.csv", "dam_break", ["-mesh_nx", "6", "-mesh_ny", "6"])):
+        out = os.path.join(w, name)
+        shutil.rmtree(out, ignore_errors=True)
+        os.makedirs(out)
+        os.symlink("/dev/full", os.path.join(out, name))
+        p = subprocess.run([ARGS.slump, "-scene", scene, "-output_dir", out, "-quiet", "-time_final", "0.02"] + extra, capture_output=True, text=True)
+        ours = [l for l in p.stderr.splitlines() if l.startswith("slump: error")]
+        print("%-18s exit %d: %s" % (name, p.returncode, ours[0] if ours else "(no message)"))
+        if p.returncode != 1:
+            fail("%s on a full disk: exit %d, expected 1\n%s" % (name, p.returncode, p.stderr[-2000:]))
+        # Open MPI's I/O layer prints its own lines for fields.h5 (ompio); ours is one
+        if len(ours) != 1 or name.replace(".part", "") not in ours[0] or "PETSC ERROR" in p.stderr:
+            fail("%s: expected one sentence naming the file, got:\n%s" % (name, p.stderr[-2000:]))
+        if os.path.exists(os.path.join(out, ".slump.lock")):
+            fail("%s: the lock file was left behind" % name)
+
+
+def test_output_interrupt():
+    """SIGTERM in the middle of a run: the run ends after its current step
+    with exit 128 + 15, steps.csv and series.csv hold only whole rows up to
+    that step, summary.csv says status interrupted with the time, and no
+    lock is left. SIGINT the same (exit 130). Then a run that fails (IDA
+    stopped by -time_max_steps) writes its summary with status
+    not_converged and the reason."""
+    import signal
+    import time
+    w = work("interrupt")
+    for sig, code in ((signal.SIGTERM, 143), (signal.SIGINT, 130)):
+        out = os.path.join(w, "sig%d" % sig)
+        shutil.rmtree(out, ignore_errors=True)
+        p = subprocess.Popen([ARGS.slump, "-scene", "couette_cessation", "-output_dir", out, "-quiet", "-rheology_papanastasiou_m", "1e5", "-time_output_dt", "1e-4"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        steps_csv = os.path.join(out, "steps.csv")
+        t0 = time.time()
+        while time.time() - t0 < 60:
+            if os.path.exists(steps_csv) and sum(1 for _ in open(steps_csv)) > 200:
+                break
+            time.sleep(0.05)
+        p.send_signal(sig)
+        _, err = p.communicate(timeout=120)
+        print("signal %d: exit %d, %s" % (sig, p.returncode, err.strip()))
+        if p.returncode != code:
+            fail("signal %d: exit %d, expected %d" % (sig, p.returncode, code))
+        s = summary(out)
+        steps_rows = lines_whole(steps_csv, 8)
+        series_rows = lines_whole(os.path.join(out, "series.csv"), 12)
+        last = float(steps_rows[-1][0])
+        print("  summary status %s, reason %s, t_final %.6g, %d steps (steps.csv %d rows, last t %.6g), series.csv %d rows"
+              % (s["status"], s["reason"], s["t_final"], s["steps"], len(steps_rows) - 1, last, len(series_rows) - 1))
+        if s["status"] != "interrupted" or "SIG" not in s["reason"]:
+            fail("summary status %r, reason %r; expected interrupted by a signal" % (s["status"], s["reason"]))
+        # every step the run took is a row of steps.csv, the last one at t_final
+        # (summary.csv has 11 significant digits)
+        if len(steps_rows) - 1 != s["steps"] or abs(last - s["t_final"]) > 1e-10 * s["t_final"]:
+            fail("steps.csv has %d rows to t = %.12g; the summary %d steps to t = %.12g" % (len(steps_rows) - 1, last, s["steps"], s["t_final"]))
+        # every output time before the interruption is a row of series.csv
+        expect = int(s["t_final"] / 1e-4 + 1e-9) + 1
+        if len(series_rows) - 1 != expect:
+            fail("series.csv has %d rows; %d output times lie in [0, %.6g]" % (len(series_rows) - 1, expect, s["t_final"]))
+        if os.path.exists(os.path.join(out, ".slump.lock")):
+            fail("the lock file was left behind")
+    out = os.path.join(w, "failed")
+    p = run("couette_cessation", ["-time_max_steps", "10"], out, expect_ok=False)
+    s = summary(out)
+    print("failed run: exit %d, status %s, reason %s, %d steps" % (p.returncode, s["status"], s["reason"], s["steps"]))
+    if p.returncode != 1 or s["status"] != "not_converged" or "-time_max_steps" not in s["reason"] or s["steps"] != 10:
+        fail("a failed run should exit 1 and write status not_converged with the reason and its 10 steps")
+
+
+def test_output_lock():
+    """Two runs given one output directory: the second is refused (exit 1,
+    one sentence naming the lock and -output_overwrite) while the first goes
+    on and completes; its series.csv is the first run's alone. A lock left
+    by a process that no longer exists is taken over."""
+    import time
+    w = work("lock")
+    out = os.path.join(w, "shared")
+    shutil.rmtree(out, ignore_errors=True)
+    a = subprocess.Popen([ARGS.slump, "-scene", "couette_cessation", "-output_dir", out, "-quiet", "-time_final", "0.15"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    t0 = time.time()
+    while not os.path.exists(os.path.join(out, ".slump.lock")) and time.time() - t0 < 60:
+        time.sleep(0.02)
+    b = subprocess.run([ARGS.slump, "-scene", "couette_cessation", "-output_dir", out, "-quiet", "-bn", "2"], capture_output=True, text=True)
+    a.communicate(timeout=300)
+    lines = [l for l in b.stderr.splitlines() if l.strip()]
+    print("second run: exit %d: %s" % (b.returncode, lines[0] if lines else ""))
+    if b.returncode != 1 or len(lines) != 1 or "-output_overwrite" not in lines[0] or "in use" not in lines[0]:
+        fail("the second run should be refused with one sentence:\n" + b.stderr)
+    if a.returncode != 0:
+        fail("the first run failed (%d)" % a.returncode)
+    ser = series(out)
+    times = [r["t"] for r in ser]
+    if times != sorted(times) or len(times) != len(set(times)) or summary(out)["bn_option"] != 1.0:
+        fail("series.csv is not the first run's alone")
+    print("first run: exit 0, %d series rows, bn %g" % (len(ser), summary(out)["bn_option"]))
+    with open(os.path.join(out, ".slump.lock"), "w") as f:
+        f.write("999999999 %s\n" % os.uname()[1])
+    p = run("couette_cessation", ["-time_final", "0.01"], out)
+    if os.path.exists(os.path.join(out, ".slump.lock")):
+        fail("the stale lock was not taken over and released")
+    print("a stale lock (pid 999999999) is taken over")
+
+
+def test_plot_arrest():
+    """cases/plot_arrest.py (the command docs/arrest.md gives) on the outputs
+    of the Couette and Poiseuille cessations (whose summaries hold the exact
+    model's t_arrest_exact): exit 0 and a figure."""
+    w = work("plot_arrest")
+    for scene in ("couette_cessation", "poiseuille_cessation"):
+        out = os.path.join(w, scene)
+        run(scene, ["-output_fields", "0", "-arrest_stop", "first"], out)
+        png = os.path.join(out, "arrest.png")
+        if os.path.exists(png):
+            os.remove(png)
+        p = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cases", "plot_arrest.py"), out], capture_output=True, text=True)
+        print("%s: exit %d %s" % (scene, p.returncode, p.stdout.strip()[-200:]))
+        if p.returncode != 0 or not os.path.exists(png) or os.path.getsize(png) < 1000:
+            fail("plot_arrest.py on %s failed:\n%s" % (scene, p.stderr[-2000:]))
 
 
 def sweep_rows(outdir):

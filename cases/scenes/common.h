@@ -195,8 +195,11 @@ static inline PetscErrorCode SlumpSceneStripExact(SlumpScene scene, SlumpProblem
   }
   PetscCall(SlumpSceneYieldParameters(prob, &tau0, &eta));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-density", &rho, NULL));
+  /* option -exact_reference late: compute the exact (1-D ALG2) arrest and stopping times after the run (default true) */
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-exact_reference", &on, NULL));
+  /* option -exact_cells late: cells of the exact reference */
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-exact_cells", &cells, NULL));
+  /* option -exact_steps late: time steps of the exact reference's coarser run (the finer one has twice as many) */
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-exact_steps", &steps, NULL));
   if (!on || !bingham || tau0 <= 0 || t_scale <= 0) PetscFunctionReturn(0);
   {
