@@ -240,6 +240,51 @@ static PetscErrorCode WriteSummary(RunCtx *r, const char dir[], const SlumpRunRe
   PetscFunctionReturn(0);
 }
 
+/* The driver's share of a checkpoint: the dissipation integral, the output
+   and iteration counts, and the level set's bookkeeping. */
+static PetscErrorCode CheckpointGet(void *ctx, PetscInt *n, PetscReal v[])
+{
+  RunCtx       *r = (RunCtx *)ctx;
+  SlumpLevelSet ls;
+  PetscFunctionBeginUser;
+  for (int k = 0; k < 2; ++k) {
+    v[3 * k]     = r->diss[k].t;
+    v[3 * k + 1] = r->diss[k].rate;
+    v[3 * k + 2] = r->diss[k].total;
+  }
+  v[6] = r->ndiss;
+  v[7] = r->nout;
+  v[8] = r->newton_since;
+  v[9] = r->lin_since;
+  *n   = 10;
+  PetscCall(SlumpProblemGetLevelSet(r->prob, &ls));
+  if (ls) {
+    PetscCall(SlumpLevelSetGetState(ls, v + 10));
+    *n += SLUMP_LEVELSET_STATE;
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode CheckpointSet(void *ctx, PetscInt n, const PetscReal v[])
+{
+  RunCtx       *r = (RunCtx *)ctx;
+  SlumpLevelSet ls;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetLevelSet(r->prob, &ls));
+  PetscCheck(n == 10 + (ls ? SLUMP_LEVELSET_STATE : 0), r->comm, PETSC_ERR_USER_INPUT, "The checkpoint (-restart) was written by a run %s a level set; restart with the scene that wrote it", ls ? "without" : "with");
+  for (int k = 0; k < 2; ++k) {
+    r->diss[k].t     = v[3 * k];
+    r->diss[k].rate  = v[3 * k + 1];
+    r->diss[k].total = v[3 * k + 2];
+  }
+  r->ndiss        = (PetscInt)v[6];
+  r->nout         = (PetscInt)v[7];
+  r->newton_since = (PetscInt)v[8];
+  r->lin_since    = (PetscInt)v[9];
+  if (ls) PetscCall(SlumpLevelSetSetState(ls, v + 10));
+  PetscFunctionReturn(0);
+}
+
 static PetscBool setup_only = PETSC_FALSE;
 
 PetscErrorCode SlumpRunSetUp(MPI_Comm comm)
@@ -260,6 +305,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   SlumpLevelSet   ls;
   PetscErrorCode  solve_err = 0;
   char            status[32] = "ok", reason[600] = "";
+  const char     *restart_file = NULL;
   SlumpProblem    prob;
   SlumpScene      scene;
   SlumpIntegrator ti = NULL;
@@ -356,6 +402,19 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     }
   }
 
+  if (ti) {
+    /* a restart file that cannot be read is refused before anything is written */
+    const char *rf;
+    int         ok = 1;
+    PetscCall(SlumpIntegratorGetRestartFile(ti, &rf));
+    if (rf) {
+      if (!r.rank) ok = access(rf, R_OK) == 0;
+      PetscCallMPI(MPI_Bcast(&ok, 1, MPI_INT, 0, comm));
+      PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "Cannot read the checkpoint '%s' (-restart); give a checkpoint.h5 written with -checkpoint_every or -checkpoint_interval", rf);
+      restart_file = rf;
+    }
+  }
+
   /* --- outputs --- */
   PetscCall(SlumpMakeDirectory(comm, dir));
   PetscCall(SlumpOutputLock(comm, dir, overwrite));
@@ -374,14 +433,33 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   PetscCall(SlumpProblemCreateVector(prob, &X));
   PetscCall(PetscObjectSetName((PetscObject)X, "solution"));
   PetscCall(SlumpProblemProjectInitialState(prob, scene->t0, X));
-  if (scene->initial) PetscCall(scene->initial(scene, prob, X));
   PetscCall(SlumpProblemGetLevelSet(prob, &ls));
-  if (ls) {
-    char path[PETSC_MAX_PATH_LEN];
-    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/interface.csv", dir));
-    PetscCall(SlumpLevelSetSetLog(ls, path));
-    PetscCall(SlumpLevelSetRecordVolume(ls, scene->t0, X));
-    PetscCall(SlumpLevelSetUpdateSurface(ls, scene->t0, X));
+  if (ti) {
+    PetscCall(SlumpIntegratorSetCheckpointDirectory(ti, dir));
+    PetscCall(SlumpIntegratorSetCheckpointHook(ti, CheckpointGet, CheckpointSet, &r));
+  }
+  if (restart_file) {
+    /* the state, the integrator's history and the accumulators at t_c; the
+       outputs of this run start after t_c */
+    PetscReal tc;
+    PetscCall(SlumpIntegratorLoadCheckpoint(ti, restart_file, X));
+    PetscCall(SlumpIntegratorGetRestart(ti, NULL, &tc));
+    PetscCall(PetscPrintf(comm, "restart from %s at t = %.6g\n", restart_file, (double)tc));
+    if (ls) {
+      char path[PETSC_MAX_PATH_LEN];
+      PetscCall(PetscSNPrintf(path, sizeof(path), "%s/interface.csv", dir));
+      PetscCall(SlumpLevelSetSetLog(ls, path));
+      PetscCall(SlumpLevelSetUpdateSurface(ls, tc, X));
+    }
+  } else {
+    if (scene->initial) PetscCall(scene->initial(scene, prob, X));
+    if (ls) {
+      char path[PETSC_MAX_PATH_LEN];
+      PetscCall(PetscSNPrintf(path, sizeof(path), "%s/interface.csv", dir));
+      PetscCall(SlumpLevelSetSetLog(ls, path));
+      PetscCall(SlumpLevelSetRecordVolume(ls, scene->t0, X));
+      PetscCall(SlumpLevelSetUpdateSurface(ls, scene->t0, X));
+    }
   }
   PetscCall(PetscMemzero(&stats, sizeof(stats)));
   if (eigen) {

@@ -146,3 +146,28 @@ PetscErrorCode SlumpProblemDualYieldChanges(SlumpProblem prob, PetscInt *nchange
   PetscCall(MPIU_Allreduce(&n, nchanged, 1, MPIU_INT, MPI_SUM, prob->comm));
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode SlumpProblemDualGetState(SlumpProblem prob, PetscInt *n, PetscBool *saved, PetscScalar **S)
+{
+  PetscFunctionBeginUser;
+  *n     = 0;
+  *saved = PETSC_FALSE;
+  *S     = NULL;
+  if (!prob->dualOn || !prob->dual) PetscFunctionReturn(0);
+  PetscCall(DualSize(prob, n));
+  *saved = prob->dualSaved;
+  *S     = prob->dualSave;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemDualSetState(SlumpProblem prob, PetscInt n, PetscBool saved, const PetscScalar S[])
+{
+  PetscInt m;
+  PetscFunctionBeginUser;
+  PetscCheck(prob->dualOn && prob->dual, prob->comm, PETSC_ERR_ORDER, "The stress-velocity Newton is off (SlumpProblemSetStressVelocity)");
+  PetscCall(DualSize(prob, &m));
+  PetscCheck(m == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "The plastic stress has %d values on this rank, the state given %d", (int)m, (int)n);
+  PetscCall(PetscArraycpy(prob->dualSave, S, n));
+  prob->dualSaved = saved;
+  PetscFunctionReturn(0);
+}

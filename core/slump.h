@@ -296,6 +296,12 @@ PETSC_EXTERN PetscErrorCode SlumpProblemDualEnd(SlumpProblem prob, PetscReal t, 
 PETSC_EXTERN PetscErrorCode SlumpProblemDualYieldChanges(SlumpProblem prob, PetscInt *nchanged);
 /* Forget the carried S (the state was changed between steps). */
 PETSC_EXTERN PetscErrorCode SlumpProblemDualReset(SlumpProblem prob);
+/* The plastic stress carried to the next solve (the state a checkpoint
+   keeps): n local values (0 and NULL when the stress-velocity Newton is
+   off), and whether it is set (otherwise the next solve starts from the
+   state's own stress). */
+PETSC_EXTERN PetscErrorCode SlumpProblemDualGetState(SlumpProblem prob, PetscInt *n, PetscBool *saved, PetscScalar **S);
+PETSC_EXTERN PetscErrorCode SlumpProblemDualSetState(SlumpProblem prob, PetscInt n, PetscBool saved, const PetscScalar S[]);
 /* The S array: n quadrature points (local cells x points per cell), ns
    values each (read only; tests). */
 PETSC_EXTERN PetscErrorCode SlumpProblemDualGetArray(SlumpProblem prob, PetscInt *n, PetscInt *ns, const PetscScalar **S);

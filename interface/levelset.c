@@ -685,3 +685,31 @@ PetscErrorCode SlumpLevelSetGetMeshSize(SlumpLevelSet ls, PetscReal *h)
   *h = ls->h;
   PetscFunctionReturn(0);
 }
+
+PetscErrorCode SlumpLevelSetGetState(SlumpLevelSet ls, PetscReal v[])
+{
+  PetscFunctionBeginUser;
+  v[0] = ls->nreinit;
+  v[1] = ls->volume0;
+  v[2] = ls->have_volume0;
+  v[3] = ls->volume;
+  v[4] = ls->max_drift;
+  v[5] = ls->volume_shift;
+  v[6] = ls->energy_reinit;
+  v[7] = ls->energy_correction;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpLevelSetSetState(SlumpLevelSet ls, const PetscReal v[])
+{
+  PetscFunctionBeginUser;
+  ls->nreinit           = (PetscInt)v[0];
+  ls->volume0           = v[1];
+  ls->have_volume0      = v[2] != 0 ? PETSC_TRUE : PETSC_FALSE;
+  ls->volume            = v[3];
+  ls->max_drift         = v[4];
+  ls->volume_shift      = v[5];
+  ls->energy_reinit     = v[6];
+  ls->energy_correction = v[7];
+  PetscFunctionReturn(0);
+}

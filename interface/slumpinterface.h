@@ -61,6 +61,12 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetSetFromOptions(SlumpLevelSet ls);
 /* Interface record, one row per accepted step: t, material volume, drift,
    reinitialisations so far, the material's extent x_min, x_max, y_max and
    the heights at the gauges (rank 0 writes; NULL closes). */
+/* The level set's bookkeeping a checkpoint keeps (SLUMP_LEVELSET_STATE
+   reals: reinitialisations, initial and current volume, largest drift,
+   volume shift, the energies the between-step actions added). */
+#define SLUMP_LEVELSET_STATE 8
+PETSC_EXTERN PetscErrorCode SlumpLevelSetGetState(SlumpLevelSet ls, PetscReal v[]);
+PETSC_EXTERN PetscErrorCode SlumpLevelSetSetState(SlumpLevelSet ls, const PetscReal v[]);
 PETSC_EXTERN PetscErrorCode SlumpLevelSetSetLog(SlumpLevelSet ls, const char path[]);
 /* Record the volume at (t, X) (the first call sets the reference volume);
    called after every accepted step, and by the driver at the initial time. */

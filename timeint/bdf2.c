@@ -30,9 +30,12 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
   Vec                 Yprev, Yn, beta, Y;
   PetscInt            N, kout = 1;
   PetscReal           dt, next_out, gprev[16], g1[16];
+  PetscInt            n0 = 0;
   PetscBool           have_prev = PETSC_FALSE, stop = PETSC_FALSE;
+  SlumpStats          ckbase; /* the counters a restart starts from */
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
+  PetscCall(PetscMemzero(&ckbase, sizeof(ckbase)));
   N  = (PetscInt)PetscCeilReal((ti->tfinal - ti->t0) / ti->dt - 1e-9);
   dt = (ti->tfinal - ti->t0) / N;
   {
@@ -46,22 +49,34 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
        2.5e-3). Steady solves keep the line search (stability_poiseuille_plug90:
        at most 12 iterations per continuation step with it, 21 without) */
     PetscCall(SlumpImplicitSolverSetDefaultLineSearch(s, sv ? PETSC_FALSE : PETSC_TRUE));
+    PetscCall(SlumpIntegratorRestoreDual(ti));
   }
   PetscCall(VecDuplicate(X, &Yprev));
   PetscCall(VecDuplicate(X, &Yn));
   PetscCall(VecDuplicate(X, &beta));
   PetscCall(VecDuplicate(X, &Y));
-  if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
-  PetscCall(SlumpIntegratorResolveArrest(ti, ti->t0, X));
-  if (ti->narrest) PetscCall(SlumpIntegratorArrestFunctions(ti, ti->t0, X, gprev));
-  next_out = ti->t0 + ti->dtout;
-  for (PetscInt n = 0; n < N; ++n) {
+  if (ti->restarted) {
+    /* from a checkpoint at step n0: the same two states, outputs and arrest
+       functions as the uninterrupted run had after that step */
+    n0        = ti->stats.steps;
+    have_prev = ti->ck_have_prev;
+    kout      = ti->ck_kout;
+    if (have_prev) PetscCall(VecCopy(ti->ck_history, Yprev));
+    for (PetscInt k = 0; k < ti->narrest; ++k) gprev[k] = ti->ck_gprev[k];
+    ckbase = ti->stats;
+  } else {
+    if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
+    PetscCall(SlumpIntegratorResolveArrest(ti, ti->t0, X));
+    if (ti->narrest) PetscCall(SlumpIntegratorArrestFunctions(ti, ti->t0, X, gprev));
+  }
+  next_out = ti->t0 + kout * ti->dtout;
+  for (PetscInt n = n0; n < N; ++n) {
     const PetscReal tn = ti->t0 + n * dt, tn1 = ti->t0 + (n + 1) * dt;
     PetscReal       alpha;
     PetscBool       conv;
     PetscInt        nits, lits;
     PetscCall(VecCopy(X, Yn));
-    if (n == 0 || !have_prev) {
+    if (n == 0 || !have_prev) { /* Yprev: the state at t_{n-1} (checkpointed) */
       alpha = 1.0 / dt;
       PetscCall(VecAXPBY(beta, -1.0 / dt, 0.0, Yn));
     } else {
@@ -120,7 +135,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     }
     PetscCall(VecCopy(Yn, Yprev));
     have_prev = PETSC_TRUE;
-    if (stop || ti->stop_requested) break;
+    if (stop) break;
     {
       /* between steps (level-set reinitialisation): restart with BDF1 */
       PetscBool changed;
@@ -131,14 +146,24 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
         ti->stats.restarts++;
       }
     }
+    if (ti->ckdir[0]) {
+      SlumpStats st;
+      PetscCall(SlumpImplicitSolverGetStats(s, &st));
+      ti->stats.newton_its = ckbase.newton_its + st.newton_its;
+      ti->stats.lin_its    = ckbase.lin_its + st.lin_its;
+      ti->stats.lin_solves = ckbase.lin_solves + st.lin_solves;
+      ti->stats.conv_fails = ckbase.conv_fails + st.conv_fails;
+      PetscCall(SlumpIntegratorCheckpointMaybe(ti, X, Yprev, have_prev, kout, gprev));
+    }
+    if (ti->stop_requested) break;
   }
   {
     SlumpStats st;
     PetscCall(SlumpImplicitSolverGetStats(s, &st));
-    ti->stats.newton_its = st.newton_its;
-    ti->stats.lin_its    = st.lin_its;
-    ti->stats.lin_solves = st.lin_solves;
-    ti->stats.conv_fails = st.conv_fails;
+    ti->stats.newton_its = ckbase.newton_its + st.newton_its;
+    ti->stats.lin_its    = ckbase.lin_its + st.lin_its;
+    ti->stats.lin_solves = ckbase.lin_solves + st.lin_solves;
+    ti->stats.conv_fails = ckbase.conv_fails + st.conv_fails;
   }
   PetscCall(SlumpImplicitSolverDestroy(&s));
   PetscCall(VecDestroy(&Yprev));

@@ -241,7 +241,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   PetscInt        kout = 1;
   long int        nni_prev = 0, netf_prev = 0, ncfn_prev = 0;
   PetscBool       quasistatic;
-  PetscInt        nli_prev = 0, nni_tot = 0, netf_tot = 0, ncfn_tot = 0;
+  PetscInt        nli_prev = 0, nni_tot = 0, netf_tot = 0, ncfn_tot = 0, lin_base = 0, lin_solves_base = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
   PetscCheck(!SUNContext_Create((void *)&comm, &ctx), comm, PETSC_ERR_LIB, "SUNContext_Create failed");
@@ -261,7 +261,8 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
     PetscCall(ISDestroy(&isu));
     PetscCall(ISDestroy(&isp));
   }
-  if (quasistatic) PetscCall(VecZeroEntries(Xdot));
+  if (ti->restarted) PetscCall(VecCopy(ti->ck_history, Xdot)); /* y' at the checkpoint */
+  else if (quasistatic) PetscCall(VecZeroEntries(Xdot));
   else PetscCall(SlumpConsistentInitialConditions(ti->prob, ti->t0, X, Xdot));
   PetscCall(SlumpProblemGetDifferentialMarker(ti->prob, idv));
   yy   = N_VMake_Petsc(X, ctx);
@@ -278,7 +279,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   mem = IDACreate(ctx);
   PetscCheck(mem, comm, PETSC_ERR_LIB, "IDACreate failed");
   IDACHECK(IDASetErrHandlerFn(mem, SlumpSilentErrHandler, NULL));
-  IDACHECK(IDAInit(mem, IdaRes, ti->t0, yy, yp));
+  IDACHECK(IDAInit(mem, IdaRes, ti->restarted ? ti->t : ti->t0, yy, yp));
   if (ti->atol_auto) {
     /* the absolute tolerance on the velocity's scale: 1e-3 rtol max|u(0)|.
        A fixed 1e-8 made IDA resolve the relative error of velocities a
@@ -298,6 +299,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
     PetscCall(PetscInfo(NULL, "absolute tolerance %g (max|u(0)| = %g)\n", (double)ti->atol, (double)umax));
   }
   PetscCall(SlumpLinearisationSetUp(ti->prob, comm, &sv));
+  PetscCall(SlumpIntegratorRestoreDual(ti));
   if (!quasistatic && sv) {
     /* the pressure (algebraic, out of the error test) is also left out of
        the Newton convergence norm: its absolute tolerance is so large that
@@ -339,8 +341,11 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   IDACHECK(IDASetSuppressAlg(mem, SUNTRUE));
   IDACHECK(IDASetStopTime(mem, ti->tfinal));
   IDACHECK(IDASetMaxNumSteps(mem, ti->max_steps));
-  if (quasistatic) PetscCall(QuasiStaticIC(mem, ti, yy, yp, LS, &user, comm));
-  if (ti->dt > 0) IDACHECK(IDASetInitStep(mem, ti->dt));
+  if (quasistatic && !ti->restarted) PetscCall(QuasiStaticIC(mem, ti, yy, yp, LS, &user, comm));
+  /* a restart: BDF order 1 from (y, y') with the last step size (IDA's
+     history is not public; checkpoint.c) */
+  if (ti->restarted) IDACHECK(IDASetInitStep(mem, ti->h_last));
+  else if (ti->dt > 0) IDACHECK(IDASetInitStep(mem, ti->dt));
   else {
     /* IDA's own first step, min(1e-3 (tf - t0), 0.5/|u'|_WRMS), floored at
        1e-7 (tf - t0): at tight tolerances (rtol 1e-8, atol 1e-9 on Couette)
@@ -366,15 +371,22 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
     h0 = PetscMax(h0, 1e-7 * (ti->tfinal - ti->t0));
     IDACHECK(IDASetInitStep(mem, h0));
   }
-  PetscCall(SlumpIntegratorResolveArrest(ti, ti->t0, X));
+  if (!ti->restarted) PetscCall(SlumpIntegratorResolveArrest(ti, ti->t0, X));
   if (ti->narrest) {
     int dir[16];
     for (PetscInt k = 0; k < ti->narrest; ++k) dir[k] = -1;
     IDACHECK(IDARootInit(mem, (int)ti->narrest, IdaRoot));
     IDACHECK(IDASetRootDirection(mem, dir));
   }
-  if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
-  next_out = ti->t0 + ti->dtout;
+  if (ti->restarted) {
+    kout     = ti->ck_kout;
+    nni_tot  = ti->stats.newton_its;
+    netf_tot = ti->stats.err_test_fails;
+    ncfn_tot = ti->stats.conv_fails;
+    lin_base = ti->stats.lin_its;
+    lin_solves_base = ti->stats.lin_solves;
+  } else if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
+  next_out = ti->t0 + kout * ti->dtout;
   for (;;) {
     int flag = IDASolve(mem, ti->tfinal, &tret, yy, yp, IDA_ONE_STEP);
     if (flag < 0) {
@@ -438,8 +450,8 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       ti->stats.steps++;
       /* IDA's counters restart with IDAReInit: totals are accumulated here */
       ti->stats.newton_its     = nni_tot;
-      ti->stats.lin_its        = nli;
-      ti->stats.lin_solves     = nsolves;
+      ti->stats.lin_its        = lin_base + nli;
+      ti->stats.lin_solves     = lin_solves_base + nsolves;
       ti->stats.err_test_fails = netf_tot;
       ti->stats.conv_fails     = ncfn_tot;
       ti->stats.h_min          = PetscMin(ti->stats.h_min, h);
@@ -455,7 +467,6 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       if (ti->outmon) PetscCall(ti->outmon(ti, tout, Y, ti->outctx));
       next_out = ti->t0 + (++kout) * ti->dtout;
     }
-    if (ti->stop_requested) break;
     {
       /* between steps (level-set reinitialisation): if the state changed,
          restart IDA from it at order 1 with the last step size */
@@ -473,6 +484,8 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
         nni_prev = netf_prev = ncfn_prev = 0;
       }
     }
+    PetscCall(SlumpIntegratorCheckpointMaybe(ti, X, Xdot, PETSC_FALSE, kout, NULL));
+    if (ti->stop_requested) break;
     if (tret >= ti->tfinal * (1 - 1e-14)) break;
   }
   IDAFree(&mem);

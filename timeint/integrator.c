@@ -34,6 +34,9 @@ PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti)
 PetscErrorCode SlumpIntegratorDestroy(SlumpIntegrator *ti)
 {
   PetscFunctionBeginUser;
+  if (!*ti) PetscFunctionReturn(0);
+  PetscCall(VecDestroy(&(*ti)->ck_history));
+  PetscCall(PetscFree((*ti)->ck_dual));
   PetscCall(PetscFree(*ti));
   PetscFunctionReturn(0);
 }
@@ -273,6 +276,9 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCall(PetscOptionsInt("-ida_max_nonlin_iters", "IDA: Newton iterations per step before the step is cut", "", ti->max_nonlin_iters, &ti->max_nonlin_iters, NULL));
   PetscCall(PetscOptionsReal("-ida_restart_step", "IDA: first step after a between-step restart (reinitialisation), as a fraction of the last step", "", ti->restart_step, &ti->restart_step, NULL));
   PetscCall(PetscOptionsInt("-time_max_steps", "Maximum number of steps", "", ti->max_steps, &ti->max_steps, NULL));
+  PetscCall(PetscOptionsInt("-checkpoint_every", "Write the integrator's state to <output_dir>/checkpoint.h5 every N steps (0: off; an interrupted run also leaves one)", "", ti->ck_every, &ti->ck_every, NULL));
+  PetscCall(PetscOptionsReal("-checkpoint_interval", "Write the integrator's state to <output_dir>/checkpoint.h5 every T of simulated time (0: off)", "", ti->ck_interval, &ti->ck_interval, NULL));
+  PetscCall(PetscOptionsString("-restart", "Resume from a checkpoint.h5 (same scene, mesh, integrator and ranks)", "", ti->restart_file, ti->restart_file, sizeof(ti->restart_file), NULL));
   {
     PetscReal thr  = ti->narrest ? ti->arrest[0].value : 0.0;
     char      spec[1024] = "";
@@ -304,6 +310,8 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCheck(ti->max_nonlin_iters > 0, comm, PETSC_ERR_USER_INPUT, "-ida_max_nonlin_iters must be a positive integer");
   PetscCheck(ti->restart_step > 0 && ti->restart_step <= 1, comm, PETSC_ERR_USER_INPUT, "-ida_restart_step must lie in (0, 1]; got %g", (double)ti->restart_step);
   PetscCheck(ti->max_steps > 0, comm, PETSC_ERR_USER_INPUT, "-time_max_steps must be a positive integer");
+  PetscCheck(ti->ck_every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every must be a non-negative number of steps (0: off); got %d", (int)ti->ck_every);
+  PetscCheck(ti->ck_interval >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_interval must be a non-negative time (0: off); got %g", (double)ti->ck_interval);
   PetscFunctionReturn(0);
 }
 
@@ -343,11 +351,13 @@ PetscErrorCode SlumpIntegratorSolve(SlumpIntegrator ti, Vec X)
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemGetEffects(ti->prob, &effects));
   PetscCheck(effects & (SLUMP_EFFECT_INERTIA | SLUMP_EFFECT_FREE_SURFACE), PetscObjectComm((PetscObject)X), PETSC_ERR_USER_INPUT, "Time integration needs the inertia or free-surface effect (a differential unknown); a scene without either is solved as a steady state");
-  ti->t              = ti->t0;
+  if (!ti->restarted) ti->t = ti->t0;
   ti->stop_requested = PETSC_FALSE;
   if (ti->type == SLUMP_INTEGRATOR_IDA) PetscCall(SlumpIntegratorSolve_IDA(ti, X));
   else PetscCall(SlumpIntegratorSolve_BDF2(ti, X));
   PetscCall(SlumpProblemGetCounters(ti->prob, &ti->stats.res_evals, &ti->stats.jac_evals));
+  ti->stats.res_evals += ti->res_offset;
+  ti->stats.jac_evals += ti->jac_offset;
   PetscFunctionReturn(0);
 }
 
@@ -356,6 +366,8 @@ PetscErrorCode SlumpIntegratorGetStats(SlumpIntegrator ti, SlumpStats *stats)
   PetscFunctionBeginUser;
   /* current also while a solve is under way or after it failed */
   PetscCall(SlumpProblemGetCounters(ti->prob, &ti->stats.res_evals, &ti->stats.jac_evals));
+  ti->stats.res_evals += ti->res_offset;
+  ti->stats.jac_evals += ti->jac_offset;
   *stats = ti->stats;
   PetscFunctionReturn(0);
 }

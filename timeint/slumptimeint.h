@@ -80,6 +80,21 @@ PETSC_EXTERN PetscErrorCode SlumpIntegratorSetArrestThreshold(SlumpIntegrator ti
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetArrestTime(SlumpIntegrator ti, PetscReal *tarrest);
 /* From a monitor: end the solve after the current step (and its outputs),
    as an interrupted run does; SlumpIntegratorGetStopRequested tells. */
+/* Checkpoint/restart (checkpoint.c; options -checkpoint_every N steps,
+   -checkpoint_interval T of simulated time, -restart FILE). The hook adds
+   up to SLUMP_CHECKPOINT_MAX_EXTRA reals of the caller's own state (its
+   accumulators) to each checkpoint and gives them back on restart.
+   Checkpoints go to dir/checkpoint.h5 (SetCheckpointDirectory; none without
+   it). LoadCheckpoint reads the state at t_c into X and prepares the next
+   Solve to resume there (same ranks, scene, mesh and integrator). */
+#define SLUMP_CHECKPOINT_MAX_EXTRA 64
+typedef PetscErrorCode (*SlumpCheckpointGetFn)(void *ctx, PetscInt *n, PetscReal v[]);
+typedef PetscErrorCode (*SlumpCheckpointSetFn)(void *ctx, PetscInt n, const PetscReal v[]);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetCheckpointHook(SlumpIntegrator ti, SlumpCheckpointGetFn get, SlumpCheckpointSetFn set, void *ctx);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorSetCheckpointDirectory(SlumpIntegrator ti, const char dir[]);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetRestartFile(SlumpIntegrator ti, const char **file);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorLoadCheckpoint(SlumpIntegrator ti, const char file[], Vec X);
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetRestart(SlumpIntegrator ti, PetscBool *restarted, PetscReal *t);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorRequestStop(SlumpIntegrator ti);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetStopRequested(SlumpIntegrator ti, PetscBool *stop);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetStepMonitor(SlumpIntegrator ti, SlumpStepMonitorFn fn, void *ctx);

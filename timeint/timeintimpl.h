@@ -55,6 +55,19 @@ struct _n_SlumpIntegrator {
   PetscReal            stress_scale;
   SlumpStats           stats;
   PetscBool            stop_requested; /* SlumpIntegratorRequestStop: end after the current step */
+  /* checkpoint/restart (checkpoint.c) */
+  char                 ckdir[PETSC_MAX_PATH_LEN], restart_file[PETSC_MAX_PATH_LEN];
+  PetscInt             ck_every, ck_last_step, ck_count;
+  PetscReal            ck_interval, ck_last_t;
+  SlumpCheckpointGetFn ckget;
+  SlumpCheckpointSetFn ckset;
+  void                *ckctx;
+  PetscBool            restarted, ck_have_prev; /* loaded from a checkpoint; BDF2: two states */
+  PetscInt             ck_kout, ck_ndual;
+  PetscReal            ck_gprev[16];
+  Vec                  ck_history; /* BDF2: the state one step back; IDA: y' */
+  PetscScalar         *ck_dual;
+  PetscInt             res_offset, jac_offset; /* evaluations before the restart */
   SlumpStepMonitorFn   stepmon;
   void                *stepctx;
   SlumpOutputMonitorFn outmon;
@@ -83,3 +96,10 @@ PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(S
 PETSC_INTERN PetscErrorCode SlumpLinearisationSetUp(SlumpProblem, MPI_Comm, PetscBool *sv);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator, Vec);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator, Vec);
+
+/* checkpoint.c: after a step (and its outputs and between-step actions),
+   write a checkpoint if one is due; H: BDF2's previous state or IDA's y'. */
+PETSC_INTERN PetscErrorCode SlumpIntegratorCheckpointMaybe(SlumpIntegrator ti, Vec X, Vec H, PetscBool have_prev, PetscInt kout, const PetscReal gprev[]);
+PETSC_INTERN PetscErrorCode SlumpIntegratorCheckpointWrite(SlumpIntegrator ti, Vec X, Vec H, PetscBool have_prev, PetscInt kout, const PetscReal gprev[]);
+/* After the solve's SlumpLinearisationSetUp: the restarted plastic stress. */
+PETSC_INTERN PetscErrorCode SlumpIntegratorRestoreDual(SlumpIntegrator ti);
