@@ -415,6 +415,18 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     }
   }
 
+  /* the state (from a checkpoint: read and checked before anything is written) */
+  PetscCall(SlumpProblemGetDM(prob, &dm));
+  PetscCall(SlumpProblemCreateVector(prob, &X));
+  PetscCall(PetscObjectSetName((PetscObject)X, "solution"));
+  PetscCall(SlumpProblemProjectInitialState(prob, scene->t0, X));
+  PetscCall(SlumpProblemGetLevelSet(prob, &ls));
+  if (ti) {
+    PetscCall(SlumpIntegratorSetCheckpointDirectory(ti, dir));
+    PetscCall(SlumpIntegratorSetCheckpointHook(ti, CheckpointGet, CheckpointSet, &r));
+  }
+  if (restart_file) PetscCall(SlumpIntegratorLoadCheckpoint(ti, restart_file, X));
+
   /* --- outputs --- */
   PetscCall(SlumpMakeDirectory(comm, dir));
   PetscCall(SlumpOutputLock(comm, dir, overwrite));
@@ -429,20 +441,10 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   if (fields) PetscCall(SlumpFieldWriterCreate(prob, dir, &r.writer));
 
   /* --- run --- */
-  PetscCall(SlumpProblemGetDM(prob, &dm));
-  PetscCall(SlumpProblemCreateVector(prob, &X));
-  PetscCall(PetscObjectSetName((PetscObject)X, "solution"));
-  PetscCall(SlumpProblemProjectInitialState(prob, scene->t0, X));
-  PetscCall(SlumpProblemGetLevelSet(prob, &ls));
-  if (ti) {
-    PetscCall(SlumpIntegratorSetCheckpointDirectory(ti, dir));
-    PetscCall(SlumpIntegratorSetCheckpointHook(ti, CheckpointGet, CheckpointSet, &r));
-  }
   if (restart_file) {
-    /* the state, the integrator's history and the accumulators at t_c; the
-       outputs of this run start after t_c */
+    /* the state, the integrator's history and the accumulators at t_c are
+       loaded; the outputs of this run start after t_c */
     PetscReal tc;
-    PetscCall(SlumpIntegratorLoadCheckpoint(ti, restart_file, X));
     PetscCall(SlumpIntegratorGetRestart(ti, NULL, &tc));
     PetscCall(PetscPrintf(comm, "restart from %s at t = %.6g\n", restart_file, (double)tc));
     if (ls) {

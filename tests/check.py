@@ -1232,6 +1232,91 @@ def test_plot_arrest():
             fail("plot_arrest.py on %s failed:\n%s" % (scene, p.stderr[-2000:]))
 
 
+def h5_state(path):
+    """The state vector of a checkpoint, as raw bytes (h5dump, hdf5-tools)."""
+    out = path + ".state.bin"
+    subprocess.run(["h5dump", "-d", "/state", "-b", "LE", "-o", out, path], check=True, capture_output=True)
+    with open(out, "rb") as f:
+        return f.read()
+
+
+def test_restart():
+    """Checkpoint/restart on Couette cessation (Bn 1, m 1e4).
+    Fixed-step BDF2 (dt 2e-3, 53 steps to arrest): a run restarted from the
+    checkpoint at step 40 reaches step 50 with the same state bit for bit
+    (both runs' checkpoints at step 50 compared byte by byte), and the same
+    arrest time, counters and final diagnostics (summary.csv strings) and
+    series.csv rows after the restart. A run stopped by SIGTERM leaves a
+    checkpoint where it stopped; restarted from it, it ends as the
+    uninterrupted run (same strings). IDA (rtol 1e-3): restarted at step 100
+    it restarts its BDF at order 1 (its history is not public), and the
+    arrest time agrees within 10 rtol. Refused: a restart on another scene
+    (another number of unknowns) and a missing file, one sentence each."""
+    import signal
+    import time
+    w = work("restart")
+    base = ["-output_fields", "0", "-arrest_stop", "first", "-time_integrator", "bdf2", "-time_dt", "2e-3"]
+    dirs = {k: os.path.join(w, k) for k in ("a0", "a", "b", "sig", "sig_restart", "ida0", "ida_b", "wrong")}
+    for d in dirs.values():
+        shutil.rmtree(d, ignore_errors=True)
+    run("couette_cessation", base + ["-checkpoint_every", "40"], dirs["a0"])
+    run("couette_cessation", base + ["-checkpoint_every", "25"], dirs["a"])
+    p = run("couette_cessation", base + ["-checkpoint_every", "5", "-restart", os.path.join(dirs["a0"], "checkpoint.h5")], dirs["b"])
+    print(p.stdout.strip().splitlines()[0])
+    sa, sb = h5_state(os.path.join(dirs["a"], "checkpoint.h5")), h5_state(os.path.join(dirs["b"], "checkpoint.h5"))
+    print("BDF2: state at step 50: %d bytes, uninterrupted and restarted %s" % (len(sa), "identical" if sa == sb else "DIFFERENT"))
+    if sa != sb or len(sa) < 1000:
+        fail("the restarted BDF2 run's state at step 50 differs from the uninterrupted run's")
+    keys = ("t_final", "t_arrest", "steps", "res_evals", "jac_evals", "newton_its", "lin_its", "kinetic_energy", "mean_shear_rate", "status")
+
+    def same_run(d1, d2, what):
+        r1, r2 = [next(csv.DictReader(open(os.path.join(d, "summary.csv")))) for d in (d1, d2)]
+        diff = [k for k in keys if r1[k] != r2[k]]
+        print("%s: t_arrest %s and %s, steps %s and %s, residual evaluations %s and %s" % (what, r1["t_arrest"], r2["t_arrest"], r1["steps"], r2["steps"], r1["res_evals"], r2["res_evals"]))
+        if diff:
+            fail("%s: summary columns differ: %s" % (what, ", ".join("%s %s / %s" % (k, r1[k], r2[k]) for k in diff)))
+        rows1 = {r.split(",")[0]: r for r in open(os.path.join(d1, "series.csv")).read().splitlines()[1:]}
+        rows2 = open(os.path.join(d2, "series.csv")).read().splitlines()[1:]
+        bad = [r for r in rows2 if rows1.get(r.split(",")[0]) != r]
+        if bad or not rows2:
+            fail("%s: %d of %d series.csv rows after the restart differ from the uninterrupted run's, e.g. %s" % (what, len(bad), len(rows2), bad[:1]))
+        print("  %d series rows after the restart identical" % len(rows2))
+
+    same_run(dirs["a"], dirs["b"], "BDF2 restarted at step 40")
+    # SIGTERM, then restart from the checkpoint it leaves (dt 5e-4: 210 steps)
+    sig = base[:-1] + ["5e-4"]
+    ref = os.path.join(w, "sig_ref")
+    shutil.rmtree(ref, ignore_errors=True)
+    run("couette_cessation", sig, ref)
+    proc = subprocess.Popen([ARGS.slump, "-scene", "couette_cessation", "-output_dir", dirs["sig"], "-quiet", "-checkpoint_every", "100000"] + sig,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    steps_csv = os.path.join(dirs["sig"], "steps.csv")
+    t0 = time.time()
+    while time.time() - t0 < 60 and not (os.path.exists(steps_csv) and sum(1 for _ in open(steps_csv)) > 40):
+        time.sleep(0.02)
+    proc.send_signal(signal.SIGTERM)
+    proc.communicate(timeout=120)
+    s = summary(dirs["sig"])
+    print("SIGTERM: exit %d at t = %.6g after %d steps; checkpoint %s" % (proc.returncode, s["t_final"], s["steps"], os.path.exists(os.path.join(dirs["sig"], "checkpoint.h5"))))
+    if proc.returncode != 143 or s["status"] != "interrupted" or s["steps"] >= 200:
+        fail("the run was not interrupted mid-way (exit %d, status %s, %d steps)" % (proc.returncode, s["status"], s["steps"]))
+    run("couette_cessation", sig + ["-restart", os.path.join(dirs["sig"], "checkpoint.h5")], dirs["sig_restart"])
+    same_run(ref, dirs["sig_restart"], "BDF2 interrupted by SIGTERM and restarted")
+    # IDA
+    ida = ["-output_fields", "0", "-arrest_stop", "first", "-time_rtol", "1e-3"]
+    run("couette_cessation", ida + ["-checkpoint_every", "100"], dirs["ida0"])
+    run("couette_cessation", ida + ["-restart", os.path.join(dirs["ida0"], "checkpoint.h5")], dirs["ida_b"])
+    ta, tb = summary(dirs["ida0"])["t_arrest"], summary(dirs["ida_b"])["t_arrest"]
+    rel = abs(tb - ta) / ta
+    print("IDA restarted from its last checkpoint (every 100 steps) of %d: arrest %.8g and %.8g, relative difference %.2e (bound 10 rtol = 1e-2)" % (summary(dirs["ida0"])["steps"], ta, tb, rel))
+    if not (ta > 0 and rel <= 1e-2):
+        fail("IDA's restarted arrest time differs by %.3e > 10 rtol" % rel)
+    # refused restarts
+    check_refused(w, [("restart_other_integrator", ["-scene", "poiseuille_cessation", "-restart", os.path.join(dirs["a0"], "checkpoint.h5")], "-restart"),
+                      ("restart_other_mesh", ["-scene", "couette_cessation", "-mesh_ny", "32"] + base + ["-restart", os.path.join(dirs["a0"], "checkpoint.h5")], "-restart"),
+                      ("restart_missing", ["-scene", "couette_cessation", "-restart", os.path.join(w, "none.h5")], "-restart")])
+
+
 def sweep_rows(outdir):
     with open(os.path.join(outdir, "sweep.csv")) as f:
         r = csv.reader(f)
