@@ -23,6 +23,20 @@ static PetscErrorCode Interpolate(PetscReal t, PetscReal ta, Vec A, PetscReal tb
   PetscFunctionReturn(0);
 }
 
+/* The nonlinear solver's counts of this solve added to those a restart
+   started from (base). */
+static PetscErrorCode SolverCounts(SlumpIntegrator ti, SlumpImplicitSolver s, const SlumpStats *base)
+{
+  SlumpStats st;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpImplicitSolverGetStats(s, &st));
+  ti->stats.newton_its = base->newton_its + st.newton_its;
+  ti->stats.lin_its    = base->lin_its + st.lin_its;
+  ti->stats.lin_solves = base->lin_solves + st.lin_solves;
+  ti->stats.conv_fails = base->conv_fails + st.conv_fails;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
 {
   MPI_Comm            comm;
@@ -147,24 +161,12 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
       }
     }
     if (ti->ckdir[0]) {
-      SlumpStats st;
-      PetscCall(SlumpImplicitSolverGetStats(s, &st));
-      ti->stats.newton_its = ckbase.newton_its + st.newton_its;
-      ti->stats.lin_its    = ckbase.lin_its + st.lin_its;
-      ti->stats.lin_solves = ckbase.lin_solves + st.lin_solves;
-      ti->stats.conv_fails = ckbase.conv_fails + st.conv_fails;
+      PetscCall(SolverCounts(ti, s, &ckbase));
       PetscCall(SlumpIntegratorCheckpointMaybe(ti, X, Yprev, have_prev, kout, gprev));
     }
     if (ti->stop_requested) break;
   }
-  {
-    SlumpStats st;
-    PetscCall(SlumpImplicitSolverGetStats(s, &st));
-    ti->stats.newton_its = ckbase.newton_its + st.newton_its;
-    ti->stats.lin_its    = ckbase.lin_its + st.lin_its;
-    ti->stats.lin_solves = ckbase.lin_solves + st.lin_solves;
-    ti->stats.conv_fails = ckbase.conv_fails + st.conv_fails;
-  }
+  PetscCall(SolverCounts(ti, s, &ckbase));
   PetscCall(SlumpImplicitSolverDestroy(&s));
   PetscCall(VecDestroy(&Yprev));
   PetscCall(VecDestroy(&Yn));
