@@ -301,7 +301,8 @@ PetscErrorCode SlumpRunSetUp(MPI_Comm comm)
 PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
 {
   char            scenename[64] = "couette_cessation", dir[PETSC_MAX_PATH_LEN] = "";
-  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE, eigen = PETSC_FALSE, overwrite = PETSC_FALSE;
+  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE, eigen = PETSC_FALSE, overwrite = PETSC_FALSE, exact = PETSC_FALSE;
+  PetscReal       exact_yielded = -1.0;
   SlumpLevelSet   ls;
   PetscErrorCode  solve_err = 0;
   char            status[32] = "ok", reason[600] = "";
@@ -338,6 +339,12 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   PetscCall(PetscOptionsBool("-output_fields", "Write fields (XDMF + HDF5) at output times", "", fields, &fields, NULL));
   PetscCall(PetscOptionsBool("-output_overwrite", "Write into an output directory another live run holds (its lock file)", "", overwrite, &overwrite, NULL));
   PetscCall(PetscOptionsBool("-quiet", "No progress lines", "", quiet, &quiet, NULL));
+  {
+    const char *methods[] = {"regularised", "exact"};
+    PetscInt    m         = 0;
+    PetscCall(PetscOptionsEList("-method", "Yield law: regularised (the rheology's regularisation) or exact (unregularised Bingham by ALG2, timeint/exact.c)", "", methods, 2, methods[0], &m, NULL));
+    exact = m == 1 ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(PetscOptionsBool("-viscous_eigenvalue", "Compute lambda1 of the viscous operator (SLEPc) and the energy bound on the stopping time", "", eigen, &eigen, NULL));
   PetscOptionsEnd();
   r.quiet = quiet;
@@ -366,9 +373,12 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     }
     if (scene->restart_step > 0) PetscCall(SlumpIntegratorSetRestartStep(ti, scene->restart_step));
     if (scene->linesearch) PetscCall(SlumpIntegratorSetLineSearch(ti, PETSC_TRUE));
+    if (exact) PetscCall(SlumpIntegratorSetType(ti, SLUMP_INTEGRATOR_EXACT));
     PetscCall(SlumpIntegratorSetFromOptions(ti));
-    PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol));
     PetscCall(SlumpIntegratorGetType(ti, &itype));
+    PetscCheck(!exact || itype == SLUMP_INTEGRATOR_EXACT, comm, PETSC_ERR_USER_INPUT, "-time_integrator %s contradicts -method exact, which integrates with backward Euler steps (-time_integrator exact); give one of them", SlumpIntegratorTypes[itype]);
+    if (itype == SLUMP_INTEGRATOR_EXACT) exact = PETSC_TRUE;
+    PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol));
     PetscCall(PetscOptionsGetReal(NULL, NULL, "-time_dt", &dt, NULL));
     PetscCall(SlumpIntegratorGetArrestCriteria(ti, &narrest, &arrest));
     /* unique column names: t_arrest_<diagnostic>[_<kind>][_<k>] */
@@ -492,7 +502,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
      with the status and the reason; an interrupted one (SIGINT, SIGTERM)
      ends after its current step and gets its summary too. */
   if (scene->steady) {
-    solve_err = SlumpSteadySolve(prob, X, &stats);
+    solve_err = exact ? SlumpSteadySolveExact(prob, X, &stats, &exact_yielded) : SlumpSteadySolve(prob, X, &stats);
     t_final   = 0.0;
     if (!solve_err) PetscCall(WriteDiagnostics(&r, 0.0, X, 0.0, 0));
   } else {
@@ -516,6 +526,13 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   if (!solve_err) {
     PetscCall(SlumpProblemComputeErrors(prob, t_final, X, err, nrm));
     if (scene->results) PetscCall(scene->results(scene, prob, t_final, X));
+    if (exact && scene->steady) PetscCall(SlumpSceneAddResult(scene, "yielded_fraction_exact", exact_yielded));
+    if (exact && ti) {
+      PetscReal lo, hi;
+      PetscCall(SlumpIntegratorGetStopInterval(ti, &lo, &hi));
+      PetscCall(SlumpSceneAddResult(scene, "t_stop_lower", lo));
+      PetscCall(SlumpSceneAddResult(scene, "t_stop_upper", hi));
+    }
     /* free surface: the final profile (the deposit of a collapse) */
     SlumpFormulation form;
     PetscCall(SlumpProblemGetFormulation(prob, &form));
@@ -548,8 +565,9 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     PetscCall(SlumpRheologyGetType(rheo, &rtype));
     PetscCall(PetscStrncpy(R->rheology, rtype, sizeof(R->rheology)));
     PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &R->regularisation_value, NULL));
-    PetscCall(PetscStrncpy(R->regularisation, regname ? regname : "none", sizeof(R->regularisation)));
-    PetscCall(PetscStrncpy(R->integrator, scene->steady ? "steady" : SlumpIntegratorTypes[itype], sizeof(R->integrator)));
+    PetscCall(PetscStrncpy(R->regularisation, exact ? "exact" : (regname ? regname : "none"), sizeof(R->regularisation)));
+    if (exact) R->regularisation_value = 0.0;
+    PetscCall(PetscStrncpy(R->integrator, scene->steady ? (exact ? "steady_exact" : "steady") : SlumpIntegratorTypes[itype], sizeof(R->integrator)));
     if (ti) PetscCall(SlumpIntegratorGetTolerances(ti, &rtol, &atol)); /* the absolute tolerance the run resolved */
     R->rtol     = rtol;
     R->atol     = atol;

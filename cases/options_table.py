@@ -22,7 +22,7 @@ RHEO = re.compile(r'SlumpRheologyAddParameter\(\s*[^,]+,\s*"[^"]*",\s*"(-[A-Za-z
 # the groups of options read outside a PetscOptionsBegin block, by file
 FILE_GROUP = {"main.c": "slump", "driver.c": "slump", "options.c": "slump", "sweep.c": "Sweep", "scene.c": "Mesh", "problem.c": "Problem",
               "mesh.c": "Mesh", "kinsol.c": "Newton (KINSOL)", "integrator.c": "Time integration", "ida.c": "Time integration",
-              "bdf2.c": "Time integration", "levelset.c": "Level set", "redistance.c": "Level set", "rheology.c": "Rheology parameters",
+              "bdf2.c": "Time integration", "exact.c": "Exact method (ALG2)", "levelset.c": "Level set", "redistance.c": "Level set", "rheology.c": "Rheology parameters",
               "common.h": "Cessation scenes (Couette, Poiseuille, duct, cavity)"}
 TYPES = {"Real": "real", "Scalar": "real", "Int": "int", "Bool": "bool", "String": "string", "Enum": "choice", "EList": "choice",
          "RealArray": "reals", "IntArray": "ints", "StringArray": "strings", "BoolArray": "bools", "HasName": "flag"}

@@ -606,3 +606,100 @@ PetscErrorCode SlumpProblemGetFieldClosure(SlumpProblem prob, PetscInt field, Pe
     for (PetscInt b = 0; b < a->Nb[field]; ++b) (*idx)[c * a->Nb[field] + b] = a->lidx[c * a->NbTot + a->off[field] + b];
   PetscFunctionReturn(0);
 }
+
+/* ---- quadrature-point fields (the exact method's stress and strain rate) ----
+   Layout: value k of quadrature point q of local cell c at
+   ((c * nq + q) * ns + k). ns = dim * dim for the plane formulation (the
+   tensor, row-major) and dim for the anti-plane one (a vector). */
+
+PetscErrorCode SlumpProblemGetQuadratureLayout(SlumpProblem prob, PetscInt *npoints, PetscInt *ns)
+{
+  SlumpAssembly a = prob->assembly;
+  PetscFunctionBeginUser;
+  PetscCheck(a, prob->comm, PETSC_ERR_ORDER, "Call SlumpProblemSetUp() first");
+  if (npoints) *npoints = a->ncell * a->Nq;
+  if (ns) *ns = a->Nc[0] == 1 ? a->dim : a->dim * a->dim;
+  PetscFunctionReturn(0);
+}
+
+/* w[c * nq + q]: quadrature weight times |det J| of each local point */
+PetscErrorCode SlumpProblemGetQuadratureWeights(SlumpProblem prob, PetscReal w[])
+{
+  SlumpAssembly a = prob->assembly;
+  PetscFunctionBeginUser;
+  PetscCheck(a, prob->comm, PETSC_ERR_ORDER, "Call SlumpProblemSetUp() first");
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    const PetscReal detJ = a->geom[c * GEOMSIZE(a->dim) + a->dim + 2 * a->dim * a->dim];
+    for (PetscInt q = 0; q < a->Nq; ++q) w[c * a->Nq + q] = a->w[q] * detJ;
+  }
+  PetscFunctionReturn(0);
+}
+
+/* g = grad u + grad u^T (plane) or grad w (anti-plane) of the velocity X
+   (boundary values at t inserted) at every local quadrature point. */
+PetscErrorCode SlumpProblemComputeQuadratureStrainRate(SlumpProblem prob, PetscReal t, Vec X, PetscScalar g[])
+{
+  SlumpAssembly      a = prob->assembly;
+  const PetscInt     dim = a->dim, nc = a->Nc[0], ns = nc == 1 ? dim : dim * dim, N = a->NbTot;
+  const PetscScalar *xa;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(VecGetArrayRead(prob->locX, &xa));
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    const PetscReal *gm = &a->geom[c * GEOMSIZE(dim)], *invJ = gm + dim + dim * dim;
+    const PetscInt  *li = &a->lidx[c * N];
+    for (PetscInt q = 0; q < a->Nq; ++q) {
+      PetscScalar ux[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, *gq = &g[(c * a->Nq + q) * ns];
+      for (PetscInt b = 0; b < a->Nb[0]; ++b) {
+        const PetscInt   B = a->off[0] + b, cc = a->comp[B];
+        const PetscReal *rg = &a->dphi[(q * MAXNB + B) * 3];
+        for (PetscInt d = 0; d < dim; ++d) {
+          PetscReal G = 0.0;
+          for (PetscInt e = 0; e < dim; ++e) G += rg[e] * invJ[e * dim + d];
+          ux[cc * dim + d] += G * xa[li[B]];
+        }
+      }
+      if (nc == 1)
+        for (PetscInt d = 0; d < dim; ++d) gq[d] = ux[d];
+      else
+        for (PetscInt i = 0; i < dim; ++i)
+          for (PetscInt j = 0; j < dim; ++j) gq[i * dim + j] = ux[i * dim + j] + ux[j * dim + i];
+    }
+  }
+  PetscCall(VecRestoreArrayRead(prob->locX, &xa));
+  PetscFunctionReturn(0);
+}
+
+/* F += int T : grad v over the velocity test functions v (T given at every
+   local quadrature point, the layout above; F global, its free dofs). */
+PetscErrorCode SlumpProblemAddQuadratureFlux(SlumpProblem prob, const PetscScalar T[], Vec F)
+{
+  SlumpAssembly  a = prob->assembly;
+  const PetscInt dim = a->dim, nc = a->Nc[0], ns = nc == 1 ? dim : dim * dim, N = a->NbTot;
+  PetscScalar   *fa;
+  PetscFunctionBeginUser;
+  PetscCall(VecZeroEntries(prob->locF));
+  PetscCall(VecGetArray(prob->locF, &fa));
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    const PetscReal *gm = &a->geom[c * GEOMSIZE(dim)], *invJ = gm + dim + dim * dim, detJ = gm[dim + 2 * dim * dim];
+    const PetscInt  *li = &a->lidx[c * N];
+    for (PetscInt q = 0; q < a->Nq; ++q) {
+      const PetscScalar *Tq = &T[(c * a->Nq + q) * ns];
+      const PetscReal    wq = a->w[q] * detJ;
+      for (PetscInt b = 0; b < a->Nb[0]; ++b) {
+        const PetscInt   B = a->off[0] + b, cc = a->comp[B];
+        const PetscReal *rg = &a->dphi[(q * MAXNB + B) * 3];
+        PetscScalar      v  = 0.0;
+        for (PetscInt d = 0; d < dim; ++d) {
+          PetscReal G = 0.0;
+          for (PetscInt e = 0; e < dim; ++e) G += rg[e] * invJ[e * dim + d];
+          v += (nc == 1 ? Tq[d] : Tq[cc * dim + d]) * G;
+        }
+        fa[li[B]] += wq * v;
+      }
+    }
+  }
+  PetscCall(VecRestoreArray(prob->locF, &fa));
+  PetscCall(DMLocalToGlobal(prob->dm, prob->locF, ADD_VALUES, F));
+  PetscFunctionReturn(0);
+}

@@ -206,7 +206,7 @@ PetscErrorCode SlumpProblemComputeDiagnostics(SlumpProblem prob, PetscReal t, Ve
   d->mean_shear_rate  = r[1] / area;
   d->l2_shear_rate    = PetscSqrtReal(r[2]);
   d->dissipation      = r[3];
-  d->yielded_fraction = r[4] / area;
+  d->yielded_fraction = prob->yieldedOverride >= 0 ? prob->yieldedOverride : r[4] / area;
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
   PetscCall(MaxShearRate(prob, &d->max_shear_rate));
   PetscCall(WallDissipation(prob, &d->dissipation_wall)); /* prob->locX: filled with diagX */

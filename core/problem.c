@@ -19,6 +19,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->quadOrder      = 3; /* (3+1)^2 = 16 points: exact to degree 7 */
   p->convForm       = SLUMP_CONVECTION_ADVECTIVE;
   p->extraField     = -1;
+  p->yieldedOverride = -1.0;
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
   PetscFunctionReturn(0);
@@ -160,6 +161,20 @@ PetscErrorCode SlumpProblemAddFrictionBC(SlumpProblem prob, const char label[], 
   prob->wallLaw      = law;
   prob->wallCoeff    = coeff;
   prob->wallReg      = reg;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetYieldedFraction(SlumpProblem prob, PetscReal fraction)
+{
+  PetscFunctionBeginUser;
+  prob->yieldedOverride = fraction;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemHasWallFriction(SlumpProblem prob, PetscBool *has)
+{
+  PetscFunctionBeginUser;
+  *has = prob->wallFriction;
   PetscFunctionReturn(0);
 }
 

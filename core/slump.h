@@ -159,6 +159,11 @@ PETSC_EXTERN PetscErrorCode SlumpProblemAddFreeSlipBC(SlumpProblem prob, const c
 typedef enum { SLUMP_WALL_NAVIER, SLUMP_WALL_COULOMB } SlumpWallLaw;
 PETSC_EXTERN const char *const SlumpWallLaws[];
 PETSC_EXTERN PetscErrorCode SlumpProblemAddFrictionBC(SlumpProblem prob, const char label[], SlumpWallLaw law, PetscReal coeff, PetscReal reg);
+PETSC_EXTERN PetscErrorCode SlumpProblemHasWallFriction(SlumpProblem prob, PetscBool *has);
+/* The yielded fraction the diagnostics report from now on, measured by a
+   solver that knows the yield surface (the exact method's steady state;
+   < 0: the rheology's criterion ||tau|| > tau_y, the default). */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetYieldedFraction(SlumpProblem prob, PetscReal fraction);
 /* Imposed traction (natural condition); a label without a condition is traction free. */
 PETSC_EXTERN PetscErrorCode SlumpProblemAddTractionBC(SlumpProblem prob, const char label[], SlumpTractionFn traction);
 /* Replace the momentum source (body force) by a scene's own pointwise term f0_u. */
@@ -235,6 +240,15 @@ PETSC_EXTERN PetscErrorCode SlumpProblemGetLocalSolution(SlumpProblem prob, Pets
 /* Local indices of a field's dofs in the closure of every local cell
    (ncell x nb, row-major; PetscFree(idx) afterwards); cStart: first cell. */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetFieldClosure(SlumpProblem prob, PetscInt field, PetscInt *ncell, PetscInt *nb, PetscInt **idx, PetscInt *cStart);
+/* Fields at the quadrature points of the local cells (the exact method's
+   plastic stress and strain rate): value k of point q of cell c at
+   (c * nq + q) * ns + k, ns = dim*dim (plane: tensors) or dim (anti-plane:
+   vectors). The strain rate is grad u + grad u^T (plane) or grad w; the
+   flux adds int T : grad v over the velocity test functions into F. */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetQuadratureLayout(SlumpProblem prob, PetscInt *npoints, PetscInt *ns);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetQuadratureWeights(SlumpProblem prob, PetscReal w[]);
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeQuadratureStrainRate(SlumpProblem prob, PetscReal t, Vec X, PetscScalar g[]);
+PETSC_EXTERN PetscErrorCode SlumpProblemAddQuadratureFlux(SlumpProblem prob, const PetscScalar T[], Vec F);
 /* Integrals over the domain of n pointwise functions (one value each) at (t, X). */
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeIntegrals(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Initial pressure (initial guess of steady solves; e.g. lithostatic). */

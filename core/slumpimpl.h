@@ -72,6 +72,7 @@ struct _n_SlumpProblem {
   PetscReal     materialArea; /* of the last diagnostics pass */
   /* wall friction (SlumpProblemAddFrictionBC) */
   PetscBool     wallFriction;
+  PetscReal     yieldedOverride; /* >= 0: the yielded fraction a solver measured (the exact method) */
   SlumpWallLaw  wallLaw;
   PetscReal     wallCoeff, wallReg;
   /* stress-velocity Newton (SlumpProblemSetStressVelocity): the plastic

@@ -23,6 +23,50 @@ static PetscErrorCode Interpolate(PetscReal t, PetscReal ta, Vec A, PetscReal tb
   PetscFunctionReturn(0);
 }
 
+/* Criterion k's falling root on [tn, tn1] (g: ga > 0 at tn, gb <= 0 at
+   tn1), located on the interpolant through (tn - dt, Yprev), (tn, Yn),
+   (tn1, X) (linear without Yprev) by the Illinois method; Y: work. */
+PetscErrorCode SlumpIntegratorLocateArrest(SlumpIntegrator ti, PetscInt k, PetscReal tn, PetscReal ga, PetscReal tn1, PetscReal gb, PetscReal dt, Vec Yprev, Vec Yn, Vec X, Vec Y, PetscReal *troot)
+{
+  PetscReal a = tn, b = tn1, c = b, gall[16];
+  PetscInt  side = 0;
+  PetscFunctionBeginUser;
+  for (PetscInt it = 0; it < 60 && PetscAbsReal(b - a) > 1e-12 * dt; ++it) {
+    PetscReal gc;
+    c = (a * gb - b * ga) / (gb - ga);
+    PetscCall(Interpolate(c, tn - dt, Yprev, tn, Yn, tn1, X, Y));
+    PetscCall(SlumpIntegratorArrestFunctions(ti, c, Y, gall));
+    gc = gall[k];
+    if (PetscAbsReal(gc) < 1e-14 * PetscAbsReal(ti->arrest[k].threshold)) break;
+    if ((gc > 0) == (ga > 0)) {
+      a  = c;
+      ga = gc;
+      if (side == -1) gb *= 0.5;
+      side = -1;
+    } else {
+      b  = c;
+      gb = gc;
+      if (side == 1) ga *= 0.5;
+      side = 1;
+    }
+  }
+  *troot = c;
+  PetscFunctionReturn(0);
+}
+
+/* The outputs due up to tn1, on the same interpolant. */
+PetscErrorCode SlumpIntegratorOutputsUpTo(SlumpIntegrator ti, PetscReal tn, PetscReal tn1, PetscReal dt, PetscReal *next_out, PetscInt *kout, Vec Yprev, Vec Yn, Vec X, Vec Y)
+{
+  PetscFunctionBeginUser;
+  while (*next_out <= tn1 * (1 + 1e-12) && *next_out <= ti->tfinal * (1 + 1e-12)) {
+    if (PetscAbsReal(*next_out - tn1) <= 1e-9 * dt) PetscCall(VecCopy(X, Y));
+    else PetscCall(Interpolate(*next_out, tn - dt, Yprev, tn, Yn, tn1, X, Y));
+    if (ti->outmon) PetscCall(ti->outmon(ti, *next_out, Y, ti->outctx));
+    *next_out = ti->t0 + (++(*kout)) * ti->dtout;
+  }
+  PetscFunctionReturn(0);
+}
+
 /* The nonlinear solver's counts of this solve added to those a restart
    started from (base). */
 static PetscErrorCode SolverCounts(SlumpIntegrator ti, SlumpImplicitSolver s, const SlumpStats *base)
@@ -115,38 +159,14 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
       PetscCall(SlumpIntegratorArrestFunctions(ti, tn1, X, g1));
       for (PetscInt k = 0; k < ti->narrest; ++k) {
         if (ti->arrest[k].t_arrest < 0 && gprev[k] > 0 && g1[k] <= 0) {
-          PetscReal a = tn, b = tn1, ga = gprev[k], gb = g1[k], c = b, gall[16];
-          PetscInt  side = 0;
-          for (PetscInt it = 0; it < 60 && PetscAbsReal(b - a) > 1e-12 * dt; ++it) {
-            PetscReal gc;
-            c = (a * gb - b * ga) / (gb - ga);
-            PetscCall(Interpolate(c, tn - dt, have_prev ? Yprev : NULL, tn, Yn, tn1, X, Y));
-            PetscCall(SlumpIntegratorArrestFunctions(ti, c, Y, gall));
-            gc = gall[k];
-            if (PetscAbsReal(gc) < 1e-14 * PetscAbsReal(ti->arrest[k].threshold)) break;
-            if ((gc > 0) == (ga > 0)) {
-              a  = c;
-              ga = gc;
-              if (side == -1) gb *= 0.5;
-              side = -1;
-            } else {
-              b  = c;
-              gb = gc;
-              if (side == 1) ga *= 0.5;
-              side = 1;
-            }
-          }
+          PetscReal c;
+          PetscCall(SlumpIntegratorLocateArrest(ti, k, tn, gprev[k], tn1, g1[k], dt, have_prev ? Yprev : NULL, Yn, X, Y, &c));
           if (SlumpIntegratorArrestRecord(ti, k, c)) stop = PETSC_TRUE;
         }
         gprev[k] = g1[k];
       }
     }
-    while (next_out <= tn1 * (1 + 1e-12) && next_out <= ti->tfinal * (1 + 1e-12)) {
-      if (PetscAbsReal(next_out - tn1) <= 1e-9 * dt) PetscCall(VecCopy(X, Y));
-      else PetscCall(Interpolate(next_out, tn - dt, have_prev ? Yprev : NULL, tn, Yn, tn1, X, Y));
-      if (ti->outmon) PetscCall(ti->outmon(ti, next_out, Y, ti->outctx));
-      next_out = ti->t0 + (++kout) * ti->dtout;
-    }
+    PetscCall(SlumpIntegratorOutputsUpTo(ti, tn, tn1, dt, &next_out, &kout, have_prev ? Yprev : NULL, Yn, X, Y));
     PetscCall(VecCopy(Yn, Yprev));
     have_prev = PETSC_TRUE;
     if (stop) break;

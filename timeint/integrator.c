@@ -4,7 +4,7 @@
 
 #include "slumprheology.h"
 
-const char *const SlumpIntegratorTypes[] = {"ida", "bdf2", "SlumpIntegratorType", "SLUMP_INTEGRATOR_", NULL};
+const char *const SlumpIntegratorTypes[] = {"ida", "bdf2", "exact", "SlumpIntegratorType", "SLUMP_INTEGRATOR_", NULL};
 const char *const SlumpThresholdKinds[]  = {"absolute", "relative", "creep"};
 static const char *const StopKinds[]     = {"none", "first", "all", "SlumpArrestStop", "SLUMP_ARREST_STOP_", NULL};
 
@@ -15,6 +15,8 @@ PetscErrorCode SlumpIntegratorCreate(SlumpProblem prob, SlumpIntegrator *ti)
   PetscCall(PetscNew(&s));
   s->prob        = prob;
   s->type        = SLUMP_INTEGRATOR_IDA;
+  s->t_stop[0]   = -1.0;
+  s->t_stop[1]   = -1.0;
   s->tfinal      = 1.0;
   s->dtout       = 0.1;
   s->rtol        = 1e-4;
@@ -254,7 +256,7 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
     PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
   }
   PetscOptionsBegin(comm, NULL, "Time integration", "SlumpIntegrator");
-  PetscCall(PetscOptionsEnum("-time_integrator", "ida (adaptive BDF, order <= 2) or bdf2 (fixed step)", "SlumpIntegratorSetType", SlumpIntegratorTypes, type, &type, NULL));
+  PetscCall(PetscOptionsEnum("-time_integrator", "ida (adaptive BDF, order <= 2), bdf2 (fixed step) or exact (unregularised Bingham: backward Euler + ALG2; -method exact)", "SlumpIntegratorSetType", SlumpIntegratorTypes, type, &type, NULL));
   PetscCall(PetscOptionsReal("-time_final", "Final time", "", ti->tfinal, &ti->tfinal, NULL));
   PetscCall(PetscOptionsReal("-time_output_dt", "Interval between outputs", "", ti->dtout, &ti->dtout, NULL));
   PetscCall(PetscOptionsReal("-time_rtol", "Relative tolerance (ida)", "", ti->rtol, &ti->rtol, NULL));
@@ -306,12 +308,22 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCheck(ti->atol > 0, comm, PETSC_ERR_USER_INPUT, "-time_atol must be positive; got %g", (double)ti->atol);
   PetscCheck(ti->dt >= 0, comm, PETSC_ERR_USER_INPUT, "-time_dt must be non-negative; got %g", (double)ti->dt);
   PetscCheck(ti->type != SLUMP_INTEGRATOR_BDF2 || ti->dt > 0, comm, PETSC_ERR_USER_INPUT, "-time_integrator bdf2 needs a positive -time_dt");
+  PetscCheck(ti->type != SLUMP_INTEGRATOR_EXACT || ti->dt > 0, comm, PETSC_ERR_USER_INPUT, "-method exact needs a positive -time_dt (its backward Euler step)");
+  PetscCheck(ti->type != SLUMP_INTEGRATOR_EXACT || (ti->ck_every == 0 && ti->ck_interval == 0 && !ti->restart_file[0]), comm, PETSC_ERR_SUP, "-method exact does not write or read checkpoints (-checkpoint_every, -checkpoint_interval, -restart): its stress multipliers are not saved");
   PetscCheck(ti->nonlin_conv_coef > 0 && ti->nonlin_conv_coef <= 1, comm, PETSC_ERR_USER_INPUT, "-ida_nonlin_conv_coef must lie in (0, 1]; got %g", (double)ti->nonlin_conv_coef);
   PetscCheck(ti->max_nonlin_iters > 0, comm, PETSC_ERR_USER_INPUT, "-ida_max_nonlin_iters must be a positive integer");
   PetscCheck(ti->restart_step > 0 && ti->restart_step <= 1, comm, PETSC_ERR_USER_INPUT, "-ida_restart_step must lie in (0, 1]; got %g", (double)ti->restart_step);
   PetscCheck(ti->max_steps > 0, comm, PETSC_ERR_USER_INPUT, "-time_max_steps must be a positive integer");
   PetscCheck(ti->ck_every >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_every must be a non-negative number of steps (0: off); got %d", (int)ti->ck_every);
   PetscCheck(ti->ck_interval >= 0, comm, PETSC_ERR_USER_INPUT, "-checkpoint_interval must be a non-negative time (0: off); got %g", (double)ti->ck_interval);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpIntegratorGetStopInterval(SlumpIntegrator ti, PetscReal *t_lo, PetscReal *t_hi)
+{
+  PetscFunctionBeginUser;
+  *t_lo = ti->t_stop[0];
+  *t_hi = ti->t_stop[1];
   PetscFunctionReturn(0);
 }
 
@@ -353,7 +365,9 @@ PetscErrorCode SlumpIntegratorSolve(SlumpIntegrator ti, Vec X)
   PetscCheck(effects & (SLUMP_EFFECT_INERTIA | SLUMP_EFFECT_FREE_SURFACE), PetscObjectComm((PetscObject)X), PETSC_ERR_USER_INPUT, "Time integration needs the inertia or free-surface effect (a differential unknown); a scene without either is solved as a steady state");
   if (!ti->restarted) ti->t = ti->t0;
   ti->stop_requested = PETSC_FALSE;
+  ti->t_stop[0] = ti->t_stop[1] = -1.0;
   if (ti->type == SLUMP_INTEGRATOR_IDA) PetscCall(SlumpIntegratorSolve_IDA(ti, X));
+  else if (ti->type == SLUMP_INTEGRATOR_EXACT) PetscCall(SlumpIntegratorSolve_Exact(ti, X));
   else PetscCall(SlumpIntegratorSolve_BDF2(ti, X));
   PetscCall(SlumpProblemGetCounters(ti->prob, &ti->stats.res_evals, &ti->stats.jac_evals));
   ti->stats.res_evals += ti->res_offset;

@@ -14,7 +14,7 @@
 
 typedef struct _n_SlumpIntegrator *SlumpIntegrator;
 
-typedef enum { SLUMP_INTEGRATOR_IDA, SLUMP_INTEGRATOR_BDF2 } SlumpIntegratorType;
+typedef enum { SLUMP_INTEGRATOR_IDA, SLUMP_INTEGRATOR_BDF2, SLUMP_INTEGRATOR_EXACT } SlumpIntegratorType;
 PETSC_EXTERN const char *const SlumpIntegratorTypes[];
 
 /* Counters, cumulative over a run. */
@@ -96,6 +96,8 @@ PETSC_EXTERN PetscErrorCode SlumpIntegratorGetRestartFile(SlumpIntegrator ti, co
 PETSC_EXTERN PetscErrorCode SlumpIntegratorLoadCheckpoint(SlumpIntegrator ti, const char file[], Vec X);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetRestart(SlumpIntegrator ti, PetscBool *restarted, PetscReal *t);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorRequestStop(SlumpIntegrator ti);
+/* Exact method: the flow stopped in (t_lo, t_hi] (both -1 if it did not). */
+PETSC_EXTERN PetscErrorCode SlumpIntegratorGetStopInterval(SlumpIntegrator ti, PetscReal *t_lo, PetscReal *t_hi);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorGetStopRequested(SlumpIntegrator ti, PetscBool *stop);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetStepMonitor(SlumpIntegrator ti, SlumpStepMonitorFn fn, void *ctx);
 PETSC_EXTERN PetscErrorCode SlumpIntegratorSetOutputMonitor(SlumpIntegrator ti, SlumpOutputMonitorFn fn, void *ctx);
@@ -142,3 +144,19 @@ typedef struct {
 PETSC_EXTERN PetscErrorCode SlumpBinghamStripCessation(const SlumpBinghamStripSpec *spec, SlumpBinghamStripResult *res);
 /* t_stop and t_arrest extrapolated from the steps dt and dt/2 (-1: not reached). */
 PETSC_EXTERN PetscErrorCode SlumpBinghamStripReference(const SlumpBinghamStripSpec *spec, PetscReal *t_stop, PetscReal *t_arrest);
+
+/* The exact (unregularised) Bingham model on the 2-D mesh (timeint/exact.c):
+ * ALG2 with the plastic stress and the strain rate's auxiliary variable at
+ * the quadrature points, for steady states and backward Euler steps
+ * (integrator type exact). Options -alg2_r, -alg2_tol, -alg2_max_it, and
+ * the u-step's linear solver under the prefix alg2_ (default LU). */
+typedef struct _n_SlumpExactSolver *SlumpExactSolver;
+PETSC_EXTERN PetscErrorCode SlumpExactSolverCreate(SlumpProblem prob, Vec X, SlumpExactSolver *s);
+PETSC_EXTERN PetscErrorCode SlumpExactSolverDestroy(SlumpExactSolver *s);
+PETSC_EXTERN PetscErrorCode SlumpExactSolverSolve(SlumpExactSolver s, PetscReal t, PetscReal alpha, Vec beta, PetscReal gref, Vec X, PetscBool *converged, PetscInt *its);
+PETSC_EXTERN PetscErrorCode SlumpExactSolverVelocityNorm(SlumpExactSolver s, Vec X, PetscReal *nrm);
+/* The area fraction where the material flows (gamma != 0). */
+PETSC_EXTERN PetscErrorCode SlumpExactSolverGetYieldedFraction(SlumpExactSolver s, PetscReal *fraction);
+PETSC_EXTERN PetscErrorCode SlumpExactSolverGetStats(SlumpExactSolver s, PetscInt *its, PetscInt *solves, PetscInt *factorisations, PetscInt *lin_its);
+/* A steady state of the unregularised model (X: initial iterate and result). */
+PETSC_EXTERN PetscErrorCode SlumpSteadySolveExact(SlumpProblem prob, Vec X, SlumpStats *stats, PetscReal *yielded_fraction);

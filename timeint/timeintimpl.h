@@ -54,6 +54,7 @@ struct _n_SlumpIntegrator {
   SlumpArrestStop      arrest_stop;
   PetscReal            stress_scale;
   SlumpStats           stats;
+  PetscReal            t_stop[2];      /* exact method: the flow stopped in (t_stop[0], t_stop[1]] (-1: not) */
   PetscBool            stop_requested; /* SlumpIntegratorRequestStop: end after the current step */
   /* checkpoint/restart (checkpoint.c) */
   char                 ckdir[PETSC_MAX_PATH_LEN], restart_file[PETSC_MAX_PATH_LEN];
@@ -96,6 +97,11 @@ PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(S
 PETSC_INTERN PetscErrorCode SlumpLinearisationSetUp(SlumpProblem, MPI_Comm, PetscBool *sv);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator, Vec);
 PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator, Vec);
+PETSC_INTERN PetscErrorCode SlumpIntegratorSolve_Exact(SlumpIntegrator, Vec);
+/* bdf2.c: an arrest root and the output times on a step's interpolant
+   (quadratic through Yprev, Yn, X; linear without Yprev) */
+PETSC_INTERN PetscErrorCode SlumpIntegratorLocateArrest(SlumpIntegrator, PetscInt k, PetscReal tn, PetscReal ga, PetscReal tn1, PetscReal gb, PetscReal dt, Vec Yprev, Vec Yn, Vec X, Vec Y, PetscReal *troot);
+PETSC_INTERN PetscErrorCode SlumpIntegratorOutputsUpTo(SlumpIntegrator, PetscReal tn, PetscReal tn1, PetscReal dt, PetscReal *next_out, PetscInt *kout, Vec Yprev, Vec Yn, Vec X, Vec Y);
 
 /* checkpoint.c: after a step (and its outputs and between-step actions),
    write a checkpoint if one is due; H: BDF2's previous state or IDA's y'. */
