@@ -311,7 +311,7 @@ PetscErrorCode SlumpSteadySolveExact(SlumpProblem prob, Vec X, SlumpStats *stats
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
   PetscCall(SlumpExactSolverCreate(prob, X, &s));
   PetscCall(SlumpExactSolverSolve(s, 0.0, 0.0, NULL, 0.0, X, &conv, &its));
-  PetscCall(PetscPrintf(comm, "steady (exact, ALG2): %" PetscInt_FMT " iterations, ||D u - gamma|| / ||D u|| = %.3e%s\n", its, (double)s->last_res, conv ? "" : "  (not converged)"));
+  PetscCall(PetscPrintf(comm, "steady (exact, ALG2): %" PetscInt_FMT " iterations, relative residual %.3e%s\n", its, (double)s->last_res, conv ? "" : "  (not converged)"));
   PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "ALG2 did not converge in %d iterations (-alg2_max_it); raise it, or loosen -alg2_tol", (int)s->maxit);
   PetscCall(PetscMemzero(stats, sizeof(*stats)));
   stats->newton_its = s->its;

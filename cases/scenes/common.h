@@ -90,9 +90,15 @@ static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, Slum
     const char *regname;
     PetscReal   target;
     PetscBool   larger, set;
+    char        method[32] = "";
+    PetscBool   exact;
     PetscCall(SlumpRheologyGetRegularisation(r0, &regname, &target, &larger));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
-    if (regname && larger && target > 1e2 && !set) {
+    /* option -method: regularised or exact (the driver's option; the exact method's initial state is its own steady state) */
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-method", method, sizeof(method), NULL));
+    PetscCall(PetscStrcmp(method, "exact", &exact));
+    if (exact && !newtonian) PetscCall(SlumpSteadySolveExact(p0, X0, &st, NULL));
+    else if (regname && larger && target > 1e2 && !set) {
       PetscCall(PetscOptionsSetValue(NULL, "-steady_continuation_start", "1e2"));
       PetscCall(SlumpSteadySolve(p0, X0, &st));
       PetscCall(PetscOptionsClearValue(NULL, "-steady_continuation_start"));
