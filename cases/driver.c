@@ -523,6 +523,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     PetscCall(PetscSNPrintf(reason, sizeof(reason), "%s at t = %g", r.signal == SIGINT ? "SIGINT" : (r.signal == SIGTERM ? "SIGTERM" : "a signal"), (double)t_final));
   } else if (narrest && t_arrest < 0) PetscCall(PetscStrncpy(status, "no_arrest", sizeof(status)));
   err[0] = err[1] = nrm[0] = nrm[1] = -1.0;
+  PetscCall(PetscStrncpy(scene->dir, dir, sizeof(scene->dir)));
   if (!solve_err) {
     PetscCall(SlumpProblemComputeErrors(prob, t_final, X, err, nrm));
     if (scene->results) PetscCall(scene->results(scene, prob, t_final, X));

@@ -38,6 +38,7 @@ struct _n_SlumpScene {
   /* optional: the exact (unregularised) model's stopping time, and the time
      its diagnostic `diag` falls below `threshold` (-1: not available) */
   PetscErrorCode (*exact_arrest)(SlumpScene, SlumpProblem, SlumpDiagnosticKind diag, PetscReal threshold, PetscReal *t_stop, PetscReal *t_arrest);
+  char      dir[PETSC_MAX_PATH_LEN]; /* the run's output directory (set by the driver before results) */
   void     *ctx;
 };
 

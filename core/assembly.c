@@ -703,3 +703,88 @@ PetscErrorCode SlumpProblemAddQuadratureFlux(SlumpProblem prob, const PetscScala
   PetscCall(DMLocalToGlobal(prob->dm, prob->locF, ADD_VALUES, F));
   PetscFunctionReturn(0);
 }
+
+/* The velocity (field 0, Nc components) at the nx x ny points of the grid
+   x_i = lower[0] + i (upper[0] - lower[0])/(nx - 1), likewise y_j, stored at
+   (j * nx + i) * Nc + c; points outside the mesh get 0 and found[] = 0
+   (found may be NULL). Each local cell evaluates the grid points inside it
+   (one tabulation per cell); a point on a shared edge is averaged over the
+   cells that find it, on every rank (collective). */
+PetscErrorCode SlumpProblemSampleVelocity(SlumpProblem prob, PetscReal t, Vec X, PetscInt nx, PetscInt ny, const PetscReal lower[2], const PetscReal upper[2], PetscReal u[], PetscReal found[])
+{
+  SlumpAssembly      a = prob->assembly;
+  const PetscInt     dim = a->dim, Nc = a->Nc[0], N = a->NbTot, npt = nx * ny;
+  const PetscReal    dx = (upper[0] - lower[0]) / (nx - 1), dy = (upper[1] - lower[1]) / (ny - 1);
+  PetscFE            fe;
+  const PetscScalar *xa;
+  PetscReal         *cnt, *xi;
+  PetscInt          *idx, cap = 64;
+  PetscFunctionBeginUser;
+  PetscCheck(dim == 2 && nx >= 2 && ny >= 2, prob->comm, PETSC_ERR_ARG_WRONG, "Velocity sampling needs a 2-D mesh and a grid of at least 2 x 2 points");
+  PetscCall(DMGetField(prob->dm, 0, NULL, (PetscObject *)&fe));
+  PetscCall(PetscCalloc1(npt, &cnt));
+  PetscCall(PetscArrayzero(u, npt * Nc));
+  PetscCall(PetscMalloc2(2 * cap, &xi, cap, &idx));
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(VecGetArrayRead(prob->locX, &xa));
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    const PetscReal *g = &a->geom[c * GEOMSIZE(dim)], *v0 = g, *J = g + dim, *invJ = g + dim + dim * dim;
+    PetscReal        bmin[2] = {PETSC_MAX_REAL, PETSC_MAX_REAL}, bmax[2] = {PETSC_MIN_REAL, PETSC_MIN_REAL};
+    PetscInt         n = 0;
+    /* the triangle's vertices: reference (-1,-1), (1,-1), (-1,1) */
+    for (PetscInt k = 0; k < 3; ++k) {
+      const PetscReal r[2] = {k == 1 ? 1.0 : -1.0, k == 2 ? 1.0 : -1.0};
+      for (PetscInt d = 0; d < 2; ++d) {
+        const PetscReal x = v0[d] + J[d * 2 + 0] * (r[0] + 1.0) + J[d * 2 + 1] * (r[1] + 1.0);
+        bmin[d] = PetscMin(bmin[d], x);
+        bmax[d] = PetscMax(bmax[d], x);
+      }
+    }
+    const PetscInt i0 = PetscMax(0, (PetscInt)PetscCeilReal((bmin[0] - lower[0]) / dx - 1e-9)), i1 = PetscMin(nx - 1, (PetscInt)PetscFloorReal((bmax[0] - lower[0]) / dx + 1e-9));
+    const PetscInt j0 = PetscMax(0, (PetscInt)PetscCeilReal((bmin[1] - lower[1]) / dy - 1e-9)), j1 = PetscMin(ny - 1, (PetscInt)PetscFloorReal((bmax[1] - lower[1]) / dy + 1e-9));
+    for (PetscInt j = j0; j <= j1; ++j)
+      for (PetscInt i = i0; i <= i1; ++i) {
+        const PetscReal x = lower[0] + i * dx - v0[0], y = lower[1] + j * dy - v0[1];
+        const PetscReal r0 = invJ[0] * x + invJ[1] * y - 1.0, r1 = invJ[2] * x + invJ[3] * y - 1.0, tol = 1e-10;
+        if (r0 < -1.0 - tol || r1 < -1.0 - tol || r0 + r1 > tol) continue;
+        if (n == cap) {
+          PetscReal *nxi;
+          PetscInt  *nidx;
+          PetscCall(PetscMalloc2(4 * cap, &nxi, 2 * cap, &nidx));
+          PetscCall(PetscArraycpy(nxi, xi, 2 * n));
+          PetscCall(PetscArraycpy(nidx, idx, n));
+          PetscCall(PetscFree2(xi, idx));
+          xi  = nxi;
+          idx = nidx;
+          cap *= 2;
+        }
+        xi[2 * n]     = r0;
+        xi[2 * n + 1] = r1;
+        idx[n++]      = j * nx + i;
+      }
+    if (!n) continue;
+    {
+      PetscTabulation T;
+      PetscCall(PetscFECreateTabulation(fe, 1, n, xi, 0, &T));
+      for (PetscInt p = 0; p < n; ++p) {
+        for (PetscInt b = 0; b < a->Nb[0]; ++b) {
+          const PetscReal v = PetscRealPart(xa[a->lidx[c * N + a->off[0] + b]]);
+          for (PetscInt k = 0; k < Nc; ++k) u[idx[p] * Nc + k] += T->T[0][(p * a->Nb[0] + b) * Nc + k] * v;
+        }
+        cnt[idx[p]] += 1.0;
+      }
+      PetscCall(PetscTabulationDestroy(&T));
+    }
+  }
+  PetscCall(VecRestoreArrayRead(prob->locX, &xa));
+  PetscCall(PetscFree2(xi, idx));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, u, (PetscMPIInt)(npt * Nc), MPIU_REAL, MPIU_SUM, prob->comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, cnt, (PetscMPIInt)npt, MPIU_REAL, MPIU_SUM, prob->comm));
+  for (PetscInt p = 0; p < npt; ++p) {
+    if (cnt[p] > 0)
+      for (PetscInt k = 0; k < Nc; ++k) u[p * Nc + k] /= cnt[p];
+    if (found) found[p] = cnt[p] > 0 ? 1.0 : 0.0;
+  }
+  PetscCall(PetscFree(cnt));
+  PetscFunctionReturn(0);
+}

@@ -249,6 +249,10 @@ PETSC_EXTERN PetscErrorCode SlumpProblemGetQuadratureLayout(SlumpProblem prob, P
 PETSC_EXTERN PetscErrorCode SlumpProblemGetQuadratureWeights(SlumpProblem prob, PetscReal w[]);
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeQuadratureStrainRate(SlumpProblem prob, PetscReal t, Vec X, PetscScalar g[]);
 PETSC_EXTERN PetscErrorCode SlumpProblemAddQuadratureFlux(SlumpProblem prob, const PetscScalar T[], Vec F);
+/* The velocity at the points of an nx x ny grid spanning [lower, upper]
+   (value c of point (i, j) at (j nx + i) Nc + c; found[p] = 0 outside the
+   mesh; collective, every rank gets every value). */
+PETSC_EXTERN PetscErrorCode SlumpProblemSampleVelocity(SlumpProblem prob, PetscReal t, Vec X, PetscInt nx, PetscInt ny, const PetscReal lower[2], const PetscReal upper[2], PetscReal u[], PetscReal found[]);
 /* Integrals over the domain of n pointwise functions (one value each) at (t, X). */
 PETSC_EXTERN PetscErrorCode SlumpProblemComputeIntegrals(SlumpProblem prob, PetscReal t, Vec X, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Initial pressure (initial guess of steady solves; e.g. lithostatic). */
