@@ -2239,6 +2239,92 @@ def test_exact_parallel():
             fail("%s: 1 and 2 ranks expected equal to 1e-6 relative, got %g" % (k, rel))
 
 
+# Vola, Boscardin & Latche (J. Comput. Phys. 187, 2003), Fig. 2a: the
+# stream-function maximum of the creeping Bingham cavity against their yield
+# stress, as digitised by the Basilisk authors (basilisk.fr, sandbox/popinet,
+# file vola2003-2a). Their yield stress is sqrt(2) times ours (Basilisk's
+# lid-bingham.c converts the same way); points read off a plot.
+VOLA_2A = [(1.96842, 0.0824803), (5.03455, 0.0687008), (19.8627, 0.0456693)]
+
+
+def test_cavity():
+    """Steady lid-driven cavity (32 x 32 cells, uniform lid).
+    (1) Newtonian Stokes flow: psi_max = 0.1000 within 0.5 % (measured
+    0.100068; 0.100325 in Basilisk's 128 x 128 regression output) at
+    (0.5, 0.765) within 0.01, and psi on the lid (which the divergence
+    constraint makes 0) below 3e-3 (measured 2.1e-3, halving with h).
+    (2) Bingham, Papanastasiou m = 1e4 (continuation from 1e1): psi_max
+    within 2.5 % of Vola et al.'s Fig. 2a at three yield stresses (measured
+    +0.2 to +0.6 %), falling with Bn while the unyielded area grows and the
+    vortex centre rises."""
+    w = work("cavity")
+    d = os.path.join(w, "stokes")
+    run("cavity", ["-bn", "0", "-output_fields", "0"], d)
+    s = summary(d)
+    print("Stokes cavity: psi_max %.6f at (%.4f, %.4f), psi on the lid %.2e" % (s["psi_max"], s["psi_x"], s["psi_y"], s["psi_top"]))
+    if not abs(s["psi_max"] - 0.1) <= 5e-4:
+        fail("Stokes cavity: psi_max expected 0.1000 within 0.5 %%, got %g" % s["psi_max"])
+    if not (abs(s["psi_x"] - 0.5) <= 0.01 and abs(s["psi_y"] - 0.765) <= 0.01):
+        fail("Stokes cavity: vortex centre expected at (0.5, 0.765), got (%g, %g)" % (s["psi_x"], s["psi_y"]))
+    if not s["psi_top"] <= 3e-3:
+        fail("Stokes cavity: psi on the lid expected <= 3e-3, got %g" % s["psi_top"])
+    if not os.path.exists(os.path.join(d, "cavity_grid.csv")):
+        fail("cavity_grid.csv not written")
+    prev = None
+    for tv, ref in VOLA_2A:
+        bn = tv / math.sqrt(2.0)
+        d = os.path.join(w, "bn%.4f" % bn)
+        run("cavity", ["-bn", repr(bn), "-steady_continuation_start", "1e1", "-output_fields", "0"], d)
+        s = summary(d)
+        rel = (s["psi_max"] - ref) / ref
+        print("Bn %.4f (Vola %.4f): psi_max %.6f, Vola %.6f (%+.2f %%); centre (%.3f, %.3f); unyielded area %.4f" % (bn, tv, s["psi_max"], ref, 100 * rel, s["psi_x"], s["psi_y"], s["unyielded_area"]))
+        if not abs(rel) <= 0.025:
+            fail("Bn %g: psi_max %g not within 2.5 %% of Vola et al.'s %g" % (bn, s["psi_max"], ref))
+        if prev is not None and not (s["psi_max"] < prev["psi_max"] and s["unyielded_area"] > prev["unyielded_area"] and s["psi_y"] > prev["psi_y"]):
+            fail("Bn %g: psi_max must fall, the unyielded area grow and the vortex rise with Bn" % bn)
+        prev = s
+
+
+def test_cavity_exact():
+    """The cavity by the exact method (ALG2) at Vola et al.'s yield stress
+    1.96842 (Bn 1.392): psi_max within 2.5 % of their Fig. 2a, and within
+    1 % of the regularised run at m = 1e4, whose unyielded area is larger
+    (the regularised criterion ||tau|| <= tau0 also holds in a creeping
+    layer around the exact plug)."""
+    w = work("cavity_exact")
+    tv, ref = VOLA_2A[0]
+    bn = repr(tv / math.sqrt(2.0))
+    d = os.path.join(w, "exact")
+    run("cavity", ["-bn", bn, "-method", "exact", "-output_fields", "0"], d)
+    e = summary(d)
+    d = os.path.join(w, "regularised")
+    run("cavity", ["-bn", bn, "-steady_continuation_start", "1e1", "-output_fields", "0"], d)
+    r = summary(d)
+    print("exact: psi_max %.6f at (%.4f, %.4f), unyielded area %.4f, %d ALG2 iterations" % (e["psi_max"], e["psi_x"], e["psi_y"], e["unyielded_area"], e["newton_its"]))
+    print("m 1e4: psi_max %.6f at (%.4f, %.4f), unyielded area %.4f; Vola %.6f" % (r["psi_max"], r["psi_x"], r["psi_y"], r["unyielded_area"], ref))
+    if not abs(e["psi_max"] - ref) <= 0.025 * ref:
+        fail("exact: psi_max %g not within 2.5 %% of Vola et al.'s %g" % (e["psi_max"], ref))
+    if not abs(e["psi_max"] - r["psi_max"]) <= 0.01 * e["psi_max"]:
+        fail("exact and regularised psi_max expected within 1 %%, got %g and %g" % (e["psi_max"], r["psi_max"]))
+    if not (0 < e["unyielded_area"] < r["unyielded_area"]):
+        fail("exact unyielded area expected positive and below the regularised one, got %g and %g" % (e["unyielded_area"], r["unyielded_area"]))
+
+
+def test_cavity_parallel():
+    """The cavity on 2 ranks (the velocity sampled across ranks): psi_max,
+    its centre and the unyielded area equal the 1-rank values to 1e-8."""
+    w = work("cavity_parallel")
+    opts = ["-bn", "2", "-steady_continuation_start", "1e1", "-output_fields", "0", "-newton_rtol", "1e-12"]
+    run("cavity", opts, os.path.join(w, "p1"))
+    run("cavity", opts, os.path.join(w, "p2"), ranks=2)
+    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
+    for k in ("psi_max", "psi_x", "psi_y", "unyielded_area", "kinetic_energy"):
+        rel = abs(s1[k] - s2[k]) / max(abs(s1[k]), 1e-300)
+        print("%-16s 1 rank %.12e  2 ranks %.12e  rel diff %.2e" % (k, s1[k], s2[k], rel))
+        if not rel <= 1e-8:
+            fail("%s: 1 and 2 ranks expected equal to 1e-8 relative, got %g" % (k, rel))
+
+
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
 
 if __name__ == "__main__":
