@@ -301,7 +301,7 @@ PetscErrorCode SlumpRunSetUp(MPI_Comm comm)
 PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
 {
   char            scenename[64] = "couette_cessation", dir[PETSC_MAX_PATH_LEN] = "";
-  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE, eigen = PETSC_FALSE, overwrite = PETSC_FALSE, exact = PETSC_FALSE;
+  PetscBool       list = PETSC_FALSE, fields = PETSC_TRUE, set, quiet = PETSC_FALSE, eigen = PETSC_FALSE, overwrite = PETSC_FALSE, exact = PETSC_FALSE, yield_map = PETSC_TRUE;
   PetscReal       exact_yielded = -1.0;
   SlumpLevelSet   ls;
   PetscErrorCode  solve_err = 0;
@@ -339,6 +339,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
   PetscCall(PetscOptionsBool("-output_fields", "Write fields (XDMF + HDF5) at output times", "", fields, &fields, NULL));
   PetscCall(PetscOptionsBool("-output_overwrite", "Write into an output directory another live run holds (its lock file)", "", overwrite, &overwrite, NULL));
   PetscCall(PetscOptionsBool("-quiet", "No progress lines", "", quiet, &quiet, NULL));
+  PetscCall(PetscOptionsBool("-output_yield_map", "Steady runs: write yield_map.csv (x, y, yielded at every quadrature point)", "", yield_map, &yield_map, NULL));
   {
     const char *methods[] = {"regularised", "exact"};
     PetscInt    m         = 0;
@@ -528,6 +529,17 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     PetscCall(SlumpProblemComputeErrors(prob, t_final, X, err, nrm));
     if (scene->results) PetscCall(scene->results(scene, prob, t_final, X));
     if (exact && scene->steady) PetscCall(SlumpSceneAddResult(scene, "yielded_fraction_exact", exact_yielded));
+    if (scene->steady && yield_map) {
+      /* where the material flows: the exact method's yield surface, or the
+         rheology's criterion ||tau|| > tau_y */
+      SlumpFormulation form;
+      PetscCall(SlumpProblemGetFormulation(prob, &form));
+      if (form != SLUMP_FORMULATION_TRANSPORT) {
+        char path[PETSC_MAX_PATH_LEN];
+        PetscCall(PetscSNPrintf(path, sizeof(path), "%s/yield_map.csv", dir));
+        PetscCall(SlumpProblemWriteYieldMap(prob, t_final, X, path));
+      }
+    }
     if (exact && ti) {
       PetscReal lo, hi;
       PetscCall(SlumpIntegratorGetStopInterval(ti, &lo, &hi));

@@ -788,3 +788,89 @@ PetscErrorCode SlumpProblemSampleVelocity(SlumpProblem prob, PetscReal t, Vec X,
   PetscCall(PetscFree(cnt));
   PetscFunctionReturn(0);
 }
+
+/* The yielded state at every quadrature point of the mesh, written by rank 0
+   to path as x,y,yielded (1 flowing, 0 unyielded): the map the exact method
+   measured (SlumpProblemSetYieldMap), or the rheology's criterion ||tau|| >
+   tau_y at X (collective). */
+PetscErrorCode SlumpProblemWriteYieldMap(SlumpProblem prob, PetscReal t, Vec X, const char path[])
+{
+  SlumpAssembly          a = prob->assembly;
+  const PetscInt         n = a->ncell * a->Nq;
+  SlumpRheologyPointwise pw;
+  PetscDS                ds;
+  const PetscScalar     *constants, *xa;
+  PetscInt               nc;
+  PetscReal             *loc, *all = NULL;
+  PetscMPIInt            rank, size, nloc;
+  PetscMPIInt           *counts = NULL, *displs = NULL;
+  CellData              *cd;
+  PetscFunctionBeginUser;
+  PetscCheck(a->dim == 2, prob->comm, PETSC_ERR_SUP, "The yield map is written for 2-D meshes");
+  PetscCall(SlumpRheologyGetPointwise(prob->rheo, &pw));
+  PetscCall(DMGetDS(prob->dm, &ds));
+  PetscCall(PetscDSGetConstants(ds, &nc, &constants));
+  PetscCall(PetscMalloc1(3 * PetscMax(n, 1), &loc));
+  PetscCall(PetscMalloc1(1, &cd));
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(VecGetArrayRead(prob->locX, &xa));
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    EvaluateCell(a, c, xa, NULL, NULL, cd);
+    for (PetscInt q = 0; q < a->Nq; ++q) {
+      const PetscInt i = c * a->Nq + q;
+      PetscScalar    v = 0.0;
+      loc[3 * i]       = cd->x[q * 3];
+      loc[3 * i + 1]   = cd->x[q * 3 + 1];
+      if (prob->yieldMap) v = prob->yieldMap[i];
+      else if (pw.yielded) pw.yielded(a->dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, &v);
+      else v = 1.0;
+      loc[3 * i + 2] = PetscRealPart(v) > 0.5 ? 1.0 : 0.0;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(prob->locX, &xa));
+  PetscCall(PetscFree(cd));
+  PetscCallMPI(MPI_Comm_rank(prob->comm, &rank));
+  PetscCallMPI(MPI_Comm_size(prob->comm, &size));
+  nloc = (PetscMPIInt)(3 * n);
+  if (!rank) PetscCall(PetscMalloc2(size, &counts, size, &displs));
+  PetscCallMPI(MPI_Gather(&nloc, 1, MPI_INT, counts, 1, MPI_INT, 0, prob->comm));
+  if (!rank) {
+    PetscInt tot = 0;
+    for (PetscMPIInt r = 0; r < size; ++r) {
+      displs[r] = (PetscMPIInt)tot;
+      tot += counts[r];
+    }
+    PetscCall(PetscMalloc1(PetscMax(tot, 1), &all));
+  }
+  PetscCallMPI(MPI_Gatherv(loc, nloc, MPIU_REAL, all, counts, displs, MPIU_REAL, 0, prob->comm));
+  if (!rank) {
+    char  tmp[PETSC_MAX_PATH_LEN + 8];
+    FILE *fp  = NULL;
+    int   err = 0;
+    PetscCall(PetscSNPrintf(tmp, sizeof(tmp), "%s.part", path));
+    err = SlumpFileOpen(tmp, &fp);
+    if (!err) err = SlumpFilePrintf(fp, "x,y,yielded\n");
+    for (PetscMPIInt r = 0; r < size && !err; ++r)
+      for (PetscInt i = displs[r]; i < displs[r] + counts[r] && !err; i += 3) err = SlumpFilePrintf(fp, "%.6g,%.6g,%d\n", (double)all[i], (double)all[i + 1], (int)all[i + 2]);
+    if (fp) {
+      int e2 = SlumpFileClose(&fp);
+      if (!err) err = e2;
+    }
+    PetscCall(SlumpFileCommit(PETSC_COMM_SELF, err, tmp, path));
+    PetscCall(PetscFree(all));
+    PetscCall(PetscFree2(counts, displs));
+  }
+  PetscCall(PetscFree(loc));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetYieldMap(SlumpProblem prob, PetscInt n, const PetscReal yielded[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(prob->yieldMap));
+  if (!yielded) PetscFunctionReturn(0);
+  PetscCheck(n == prob->assembly->ncell * prob->assembly->Nq, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "The yield map has %d values; this rank has %d quadrature points", (int)n, (int)(prob->assembly->ncell * prob->assembly->Nq));
+  PetscCall(PetscMalloc1(PetscMax(n, 1), &prob->yieldMap));
+  PetscCall(PetscArraycpy(prob->yieldMap, yielded, n));
+  PetscFunctionReturn(0);
+}

@@ -38,6 +38,7 @@ PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
   PetscCall(SlumpAssemblyDestroy(&p->assembly));
   PetscCall(PetscFree2(p->dual, p->dualSave));
   PetscCall(PetscFree2(p->dualYield, p->dualYieldJ));
+  PetscCall(PetscFree(p->yieldMap));
   PetscCall(VecDestroy(&p->dualLin));
   PetscCall(VecDestroy(&p->locDual));
   PetscCall(PetscFree2(p->bcIdx, p->bcVal));

@@ -164,6 +164,12 @@ PETSC_EXTERN PetscErrorCode SlumpProblemHasWallFriction(SlumpProblem prob, Petsc
    solver that knows the yield surface (the exact method's steady state;
    < 0: the rheology's criterion ||tau|| > tau_y, the default). */
 PETSC_EXTERN PetscErrorCode SlumpProblemSetYieldedFraction(SlumpProblem prob, PetscReal fraction);
+/* ... and the map behind it: 1 (yielded) or 0 at each local quadrature point
+   (the layout of SlumpProblemGetQuadratureLayout; NULL: none). */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetYieldMap(SlumpProblem prob, PetscInt n, const PetscReal yielded[]);
+/* x,y,yielded at every quadrature point into a CSV file (rank 0 writes):
+   the map set above, or the rheology's criterion ||tau|| > tau_y at X. */
+PETSC_EXTERN PetscErrorCode SlumpProblemWriteYieldMap(SlumpProblem prob, PetscReal t, Vec X, const char path[]);
 /* Imposed traction (natural condition); a label without a condition is traction free. */
 PETSC_EXTERN PetscErrorCode SlumpProblemAddTractionBC(SlumpProblem prob, const char label[], SlumpTractionFn traction);
 /* Replace the momentum source (body force) by a scene's own pointwise term f0_u. */

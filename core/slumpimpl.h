@@ -73,6 +73,7 @@ struct _n_SlumpProblem {
   /* wall friction (SlumpProblemAddFrictionBC) */
   PetscBool     wallFriction;
   PetscReal     yieldedOverride; /* >= 0: the yielded fraction a solver measured (the exact method) */
+  PetscReal    *yieldMap;        /* and its map: 1 yielded, 0 not, per local quadrature point (or NULL) */
   SlumpWallLaw  wallLaw;
   PetscReal     wallCoeff, wallReg;
   /* stress-velocity Newton (SlumpProblemSetStressVelocity): the plastic

@@ -319,8 +319,13 @@ PetscErrorCode SlumpSteadySolveExact(SlumpProblem prob, Vec X, SlumpStats *stats
   stats->lin_its    = s->lin_its;
   {
     PetscReal yf;
+    PetscReal *map;
     PetscCall(SlumpExactSolverGetYieldedFraction(s, &yf));
     PetscCall(SlumpProblemSetYieldedFraction(prob, yf));
+    PetscCall(PetscMalloc1(PetscMax(s->npt, 1), &map));
+    for (PetscInt i = 0; i < s->npt; ++i) map[i] = TensorNorm(&s->gam[i * s->ns], s->ns, s->plane) > 0 ? 1.0 : 0.0;
+    PetscCall(SlumpProblemSetYieldMap(prob, s->npt, map));
+    PetscCall(PetscFree(map));
     if (yielded_fraction) *yielded_fraction = yf;
   }
   PetscCall(SlumpProblemGetCounters(prob, &stats->res_evals, &stats->jac_evals));
