@@ -874,3 +874,112 @@ PetscErrorCode SlumpProblemSetYieldMap(SlumpProblem prob, PetscInt n, const Pets
   PetscCall(PetscArraycpy(prob->yieldMap, yielded, n));
   PetscFunctionReturn(0);
 }
+
+/* The force the fluid exerts on a boundary, component comp: the consistent
+   reaction F = -R(phi_h e_comp) of the steady residual, with phi_h the P2
+   interpolant of a cut-off phi equal to 1 on that boundary and 0 on the
+   other no-slip and open boundaries (free-slip planes may cross its
+   support: their shear traction vanishes). As phi_h lies in the velocity
+   space, R(phi_h e_comp) involves only the residuals of the constrained
+   dofs on that boundary, whatever the cut-off: the discrete solution's
+   exact reaction (it converges at the order of the stress, faster than the
+   traction integrated over the boundary). With a plastic stress at the
+   quadrature points (SlumpProblemSetPlasticStress: the exact method) the
+   flux is the viscous one plus that stress (collective). */
+typedef struct {
+  SlumpCutoffFn fn;
+  void         *ctx;
+  PetscInt      comp;
+} CutoffProjection;
+
+static PetscErrorCode ProjectCutoff(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
+{
+  const CutoffProjection *cp = (const CutoffProjection *)ctx;
+  PetscReal               phi, dphi[3];
+  cp->fn(x, cp->ctx, &phi, dphi);
+  for (PetscInt c = 0; c < Nc; ++c) u[c] = c == cp->comp ? phi : 0.0;
+  return 0;
+}
+
+static PetscErrorCode ProjectZero(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
+{
+  for (PetscInt c = 0; c < Nc; ++c) u[c] = 0.0;
+  return 0;
+}
+
+PetscErrorCode SlumpProblemComputeBoundaryForce(SlumpProblem prob, PetscReal t, Vec X, SlumpCutoffFn cutoff, void *ctx, PetscInt comp, PetscReal *force)
+{
+  SlumpAssembly      a = prob->assembly;
+  const PetscInt     dim = a->dim;
+  PetscDS            ds;
+  PetscPointFunc     f0, f1;
+  const PetscScalar *constants, *xa, *pa;
+  PetscInt           nc;
+  PetscReal          F = 0.0, tau0 = 0.0;
+  PetscBool          plastic = prob->plasticStress ? PETSC_TRUE : PETSC_FALSE, has;
+  Vec                locPhi;
+  CellData          *cd;
+  PetscFunctionBeginUser;
+  PetscCheck(a->Nc[0] == dim && comp >= 0 && comp < dim, prob->comm, PETSC_ERR_ARG_WRONG, "The boundary force needs the plane formulation and a component below %d", (int)dim);
+  {
+    CutoffProjection cp = {cutoff, ctx, comp};
+    PetscErrorCode (*funcs[SLUMP_MAX_FIELDS])(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar[], void *);
+    void *ctxs[SLUMP_MAX_FIELDS];
+    for (PetscInt f = 0; f < a->Nf; ++f) {
+      funcs[f] = f ? ProjectZero : ProjectCutoff;
+      ctxs[f]  = f ? NULL : (void *)&cp;
+    }
+    PetscCall(DMGetLocalVector(prob->dm, &locPhi));
+    PetscCall(VecZeroEntries(locPhi));
+    PetscCall(DMProjectFunctionLocal(prob->dm, t, funcs, ctxs, INSERT_ALL_VALUES, locPhi));
+  }
+  if (plastic) {
+    PetscCall(SlumpRheologyHasParameter(prob->rheo, "yield_stress", &has));
+    if (has) PetscCall(SlumpRheologyGetParameter(prob->rheo, "yield_stress", &tau0));
+    if (tau0 > 0) PetscCall(SlumpProblemSetRheologyParameter(prob, "yield_stress", 0.0));
+  }
+  PetscCall(DMGetDS(prob->dm, &ds));
+  PetscCall(PetscDSGetConstants(ds, &nc, &constants));
+  PetscCall(PetscDSGetResidual(ds, 0, &f0, &f1));
+  PetscCall(PetscMalloc1(1, &cd));
+  PetscCall(SlumpProblemFillLocal(prob, t, X));
+  PetscCall(VecGetArrayRead(prob->locX, &xa));
+  PetscCall(VecGetArrayRead(locPhi, &pa));
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    EvaluateCell(a, c, xa, NULL, pa, cd); /* phi_h's values and gradients in ul, ulx */
+    for (PetscInt q = 0; q < a->Nq; ++q) {
+      PetscScalar        r0[3] = {0, 0, 0}, r1[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+      const PetscScalar *v = &cd->ul[q * 8], *vx = &cd->ulx[q * 24];
+      PetscReal          s = PetscAbsReal(PetscRealPart(v[comp]));
+      for (PetscInt d = 0; d < dim; ++d) s += PetscAbsReal(PetscRealPart(vx[comp * dim + d]));
+      if (s == 0.0) continue;
+      if (f0) f0(dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r0);
+      if (f1) f1(dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r1);
+      if (plastic)
+        for (PetscInt d = 0; d < dim; ++d) r1[comp * dim + d] += prob->plasticStress[(c * a->Nq + q) * dim * dim + comp * dim + d];
+      {
+        PetscReal val = PetscRealPart(r0[comp] * v[comp]);
+        for (PetscInt d = 0; d < dim; ++d) val += PetscRealPart(r1[comp * dim + d] * vx[comp * dim + d]);
+        F -= a->w[q] * cd->detJ * val;
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(locPhi, &pa));
+  PetscCall(VecRestoreArrayRead(prob->locX, &xa));
+  PetscCall(DMRestoreLocalVector(prob->dm, &locPhi));
+  PetscCall(PetscFree(cd));
+  if (plastic && tau0 > 0) PetscCall(SlumpProblemSetRheologyParameter(prob, "yield_stress", tau0));
+  PetscCall(MPIU_Allreduce(&F, force, 1, MPIU_REAL, MPIU_SUM, prob->comm));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetPlasticStress(SlumpProblem prob, PetscInt n, const PetscScalar S[])
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscFree(prob->plasticStress));
+  if (!S) PetscFunctionReturn(0);
+  PetscCheck(n == prob->assembly->ncell * prob->assembly->Nq * prob->assembly->dim * prob->assembly->dim, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "The plastic stress has %d values; this rank needs %d (plane formulation)", (int)n, (int)(prob->assembly->ncell * prob->assembly->Nq * prob->assembly->dim * prob->assembly->dim));
+  PetscCall(PetscMalloc1(PetscMax(n, 1), &prob->plasticStress));
+  PetscCall(PetscArraycpy(prob->plasticStress, S, n));
+  PetscFunctionReturn(0);
+}

@@ -39,6 +39,7 @@ PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
   PetscCall(PetscFree2(p->dual, p->dualSave));
   PetscCall(PetscFree2(p->dualYield, p->dualYieldJ));
   PetscCall(PetscFree(p->yieldMap));
+  PetscCall(PetscFree(p->plasticStress));
   PetscCall(VecDestroy(&p->dualLin));
   PetscCall(VecDestroy(&p->locDual));
   PetscCall(PetscFree2(p->bcIdx, p->bcVal));

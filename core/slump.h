@@ -169,6 +169,15 @@ PETSC_EXTERN PetscErrorCode SlumpProblemSetYieldedFraction(SlumpProblem prob, Pe
 PETSC_EXTERN PetscErrorCode SlumpProblemSetYieldMap(SlumpProblem prob, PetscInt n, const PetscReal yielded[]);
 /* x,y,yielded at every quadrature point into a CSV file (rank 0 writes):
    the map set above, or the rheology's criterion ||tau|| > tau_y at X. */
+/* The force of the fluid on a boundary (component comp), as the consistent
+   reaction -R(phi e_comp) of the steady residual with a cut-off phi equal to
+   1 on that boundary and 0 on the other no-slip and open boundaries. */
+typedef void (*SlumpCutoffFn)(const PetscReal x[], void *ctx, PetscReal *phi, PetscReal dphi[]);
+PETSC_EXTERN PetscErrorCode SlumpProblemComputeBoundaryForce(SlumpProblem prob, PetscReal t, Vec X, SlumpCutoffFn cutoff, void *ctx, PetscInt comp, PetscReal *force);
+/* The exact method's plastic stress at the quadrature points (plane: dim x
+   dim per point; NULL: none): the force above then uses it with the
+   viscous stress in place of the rheology's law. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetPlasticStress(SlumpProblem prob, PetscInt n, const PetscScalar S[]);
 PETSC_EXTERN PetscErrorCode SlumpProblemWriteYieldMap(SlumpProblem prob, PetscReal t, Vec X, const char path[]);
 /* Imposed traction (natural condition); a label without a condition is traction free. */
 PETSC_EXTERN PetscErrorCode SlumpProblemAddTractionBC(SlumpProblem prob, const char label[], SlumpTractionFn traction);

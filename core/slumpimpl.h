@@ -73,6 +73,7 @@ struct _n_SlumpProblem {
   /* wall friction (SlumpProblemAddFrictionBC) */
   PetscBool     wallFriction;
   PetscReal     yieldedOverride; /* >= 0: the yielded fraction a solver measured (the exact method) */
+  PetscScalar  *plasticStress;   /* the exact method's plastic stress per local quadrature point (dim x dim), or NULL */
   PetscReal    *yieldMap;        /* and its map: 1 yielded, 0 not, per local quadrature point (or NULL) */
   SlumpWallLaw  wallLaw;
   PetscReal     wallCoeff, wallReg;

@@ -325,6 +325,7 @@ PetscErrorCode SlumpSteadySolveExact(SlumpProblem prob, Vec X, SlumpStats *stats
     PetscCall(PetscMalloc1(PetscMax(s->npt, 1), &map));
     for (PetscInt i = 0; i < s->npt; ++i) map[i] = TensorNorm(&s->gam[i * s->ns], s->ns, s->plane) > 0 ? 1.0 : 0.0;
     PetscCall(SlumpProblemSetYieldMap(prob, s->npt, map));
+    if (s->plane) PetscCall(SlumpProblemSetPlasticStress(prob, s->npt * s->ns, s->lam));
     PetscCall(PetscFree(map));
     if (yielded_fraction) *yielded_fraction = yf;
   }

@@ -1,0 +1,142 @@
+/* Creeping flow past a cylinder between two parallel walls (Riber's thesis,
+ * section 3.4.3; the confined-cylinder benchmark of the viscoelastic and
+ * viscoplastic literature, blockage R/H = 1/2).
+ * The upper half of the channel, -15 R <= x <= 15 R, 0 <= y <= H = 2 R,
+ * with the cylinder of radius R = 1 at the origin cut out (Gmsh mesh
+ * cases/data/cylinder.msh from cylinder.geo; physical names inlet, outlet,
+ * wall, symmetry, cylinder); free slip on the symmetry plane y = 0.
+ * The inlet carries the fully developed channel profile of mean velocity
+ * U = 1 for the material in force (Newtonian parabola, or the Bingham
+ * profile with its plug, whose pressure gradient is found by bisection);
+ * the outlet has v = 0 and zero normal traction.
+ * Bn = tau0 R / (eta_p U) (the norm of the code: ||gdot|| = sqrt(gdot:gdot/2)).
+ * Result: the drag coefficient K = F / (eta_p U) of the whole cylinder
+ * (twice the half domain's force), from the consistent reaction with a
+ * radial cut-off (SlumpProblemComputeBoundaryForce); Newtonian: K = 132.36
+ * (Alves, Pinho & Oliveira 2001 and the benchmark papers before them). */
+#include "common.h"
+#include <unistd.h>
+
+#ifndef SLUMP_DATA_DIR
+  #define SLUMP_DATA_DIR "cases/data"
+#endif
+
+typedef struct {
+  PetscReal R, H, U, G, tau0, eta, cut;
+} CylinderCtx;
+
+/* Mean velocity over the half channel of the fully developed flow driven by G. */
+static PetscReal MeanVelocity(PetscReal G, PetscReal H, PetscReal eta, PetscReal tau0)
+{
+  const PetscReal y0 = tau0 / G;
+  if (y0 >= H) return 0.0;
+  return G / (2.0 * eta * H) * (PetscSqr(H - y0) * H - PetscPowReal(H - y0, 3) / 3.0);
+}
+
+static PetscErrorCode InletU(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
+{
+  const CylinderCtx *c  = (const CylinderCtx *)ctx;
+  const PetscReal    y0 = c->tau0 / c->G, ay = PetscMax(PetscAbsReal(x[1]), y0);
+  u[0]                  = ay >= c->H ? 0.0 : c->G / (2.0 * c->eta) * (PetscSqr(c->H - y0) - PetscSqr(ay - y0));
+  u[1]                  = 0.0;
+  return 0;
+}
+
+/* 1 on the cylinder, falling linearly to 0 at r = 1.8 R (inside the channel) */
+static void Cutoff(const PetscReal x[], void *ctx, PetscReal *phi, PetscReal dphi[])
+{
+  const CylinderCtx *c = (const CylinderCtx *)ctx;
+  const PetscReal    r = PetscSqrtReal(x[0] * x[0] + x[1] * x[1]), r1 = c->cut * c->R;
+  dphi[0] = dphi[1] = 0.0;
+  if (r >= r1) *phi = 0.0;
+  else if (r <= c->R * (1 + 1e-12)) *phi = 1.0;
+  else {
+    *phi    = (r1 - r) / (r1 - c->R);
+    dphi[0] = -x[0] / (r * (r1 - c->R));
+    dphi[1] = -x[1] / (r * (r1 - c->R));
+  }
+}
+
+static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, Vec X)
+{
+  CylinderCtx *c = (CylinderCtx *)scene->ctx;
+  PetscReal    Fx, tau0, etap;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemComputeBoundaryForce(prob, t, X, Cutoff, c, 0, &Fx));
+  PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));
+  PetscCall(SlumpSceneAddResult(scene, "bn", tau0 * c->R / (etap * c->U)));
+  PetscCall(SlumpSceneAddResult(scene, "drag_coefficient", 2.0 * Fx / (etap * c->U)));
+  PetscCall(SlumpSceneAddResult(scene, "pressure_gradient_inlet", c->G));
+  {
+    /* the mean velocity across the outlet and across the cylinder's section
+       x = 0 (mass conservation checks; both U), by sampling */
+    const PetscInt n = 401;
+    PetscReal      u[2 * 2 * 401], lo[2], hi[2], m[2] = {0, 0};
+    for (PetscInt k = 0; k < 2; ++k) {
+      lo[0] = k ? 0.0 : 15.0;
+      hi[0] = lo[0] + 1e-9;
+      lo[1] = k ? c->R : 0.0;
+      hi[1] = c->H;
+      PetscCall(SlumpProblemSampleVelocity(prob, t, X, 2, n, lo, hi, u, NULL));
+      for (PetscInt j = 0; j < n; ++j) m[k] += (j == 0 || j == n - 1 ? 0.5 : 1.0) * u[(j * 2) * 2] * (hi[1] - lo[1]) / (n - 1);
+      m[k] /= c->H;
+    }
+    PetscCall(SlumpSceneAddResult(scene, "outlet_mean_velocity", m[0]));
+    PetscCall(SlumpSceneAddResult(scene, "gap_mean_velocity", m[1]));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneCreate_Cylinder(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+{
+  CylinderCtx *c;
+  PetscReal    bn = 0.0, lo, hi, lower[2] = {-15.0, 0.0}, upper[2] = {15.0, 2.0};
+  PetscBool    has;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  scene->ctx = c;
+  c->R       = 1.0;
+  c->H       = 2.0;
+  c->U       = 1.0;
+  c->eta     = 1.0;
+  c->cut     = 1.8;
+  PetscOptionsBegin(comm, NULL, "Scene cylinder", "");
+  PetscCall(PetscOptionsReal("-cylinder_cutoff", "Outer radius of the drag's cut-off function, in R (in (1, 2))", "", c->cut, &c->cut, NULL));
+  PetscCall(PetscOptionsReal("-bn", "Bingham number tau0 R/(eta_p U), U the mean inlet velocity", "", bn, &bn, NULL));
+  PetscOptionsEnd();
+  PetscCheck(bn >= 0, comm, PETSC_ERR_USER_INPUT, "-bn must be non-negative; got %g", (double)bn);
+  scene->steady = PETSC_TRUE;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh_file", &has));
+  if (!has) {
+    const char *path = SLUMP_DATA_DIR "/cylinder.msh";
+    int         ok   = access(path, R_OK) == 0;
+    PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "The cylinder scene's mesh %s is missing; give -mesh_file (a Gmsh mesh from cases/data/cylinder.geo)", path);
+    PetscCall(PetscOptionsSetValue(NULL, "-mesh_file", path));
+    PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
+    PetscCall(PetscOptionsClearValue(NULL, "-mesh_file"));
+  } else PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
+  PetscCall(SlumpProblemSetEffects(prob, 0));
+  PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->eta * c->U / c->R));
+  c->tau0 = bn * c->eta * c->U / c->R;
+  /* the inlet's pressure gradient: mean velocity U (bisection; monotone in G) */
+  lo = c->tau0 / c->H;
+  hi = PetscMax(1.0, 2.0 * lo);
+  while (MeanVelocity(hi, c->H, c->eta, c->tau0) < c->U) hi *= 2.0;
+  for (PetscInt it = 0; it < 200; ++it) {
+    const PetscReal mid = 0.5 * (lo + hi);
+    if (MeanVelocity(mid, c->H, c->eta, c->tau0) < c->U) lo = mid;
+    else hi = mid;
+  }
+  c->G = 0.5 * (lo + hi);
+  {
+    const PetscInt compy = 1;
+    PetscCall(SlumpProblemAddVelocityBC(prob, "inlet", "inlet", 0, NULL, InletU, NULL, c));
+    PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "outlet", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+    PetscCall(SlumpProblemAddVelocityBC(prob, "wall", "wall", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+    PetscCall(SlumpProblemAddVelocityBC(prob, "cylinder", "cylinder", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+    PetscCall(SlumpProblemAddFreeSlipBC(prob, "symmetry"));
+  }
+  scene->results = Results;
+  PetscCall(SlumpSceneAddParameter(scene, "bn_option", bn));
+  PetscFunctionReturn(0);
+}
