@@ -2318,11 +2318,85 @@ def test_cavity_parallel():
     run("cavity", opts, os.path.join(w, "p1"))
     run("cavity", opts, os.path.join(w, "p2"), ranks=2)
     s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
+    if s2["ranks"] != 2:
+        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
     for k in ("psi_max", "psi_x", "psi_y", "unyielded_area", "kinetic_energy"):
         rel = abs(s1[k] - s2[k]) / max(abs(s1[k]), 1e-300)
         print("%-16s 1 rank %.12e  2 ranks %.12e  rel diff %.2e" % (k, s1[k], s2[k], rel))
         if not rel <= 1e-8:
             fail("%s: 1 and 2 ranks expected equal to 1e-8 relative, got %g" % (k, rel))
+
+
+def test_cylinder():
+    """Creeping flow past a cylinder between walls, blockage 1/2, on the
+    shipped Gmsh mesh (cases/data/cylinder.msh, 3051 triangles).
+    (1) Newtonian: the drag coefficient K = F/(eta U) within 0.2 % of the
+    benchmark 132.358 (Alves, Pinho & Oliveira 2001; measured 132.243, and
+    132.327, 132.350 on the meshes of s = 0.5, 0.25), the same for two
+    cut-off radii to 1e-8 (the consistent reaction does not depend on it),
+    and the mean velocity U = 1 at the outlet and through the gap above the
+    cylinder within 1e-3 (mass conservation).
+    (2) Bingham (Papanastasiou m = 1e4): K grows with Bn (Bn 1: 163.4,
+    Bn 10: 434.5)."""
+    w = work("cylinder")
+    ks = []
+    for cut in ("1.2", "1.8"):
+        d = os.path.join(w, "newtonian_%s" % cut)
+        run("cylinder", ["-rheology_type", "newtonian", "-cylinder_cutoff", cut, "-output_fields", "0"], d)
+        s = summary(d)
+        ks.append(s["drag_coefficient"])
+        print("Newtonian, cut-off %s R: K = %.6f (benchmark 132.358); mean velocity outlet %.6f, gap %.6f" % (cut, s["drag_coefficient"], s["outlet_mean_velocity"], s["gap_mean_velocity"]))
+        if not (abs(s["outlet_mean_velocity"] - 1) <= 1e-3 and abs(s["gap_mean_velocity"] - 1) <= 1e-3):
+            fail("mean velocities expected 1 within 1e-3, got %g and %g" % (s["outlet_mean_velocity"], s["gap_mean_velocity"]))
+    if not abs(ks[0] - 132.358) <= 0.002 * 132.358:
+        fail("Newtonian K expected within 0.2 %% of 132.358, got %g" % ks[0])
+    if not abs(ks[0] - ks[1]) <= 1e-8 * ks[0]:
+        fail("K should not depend on the cut-off: %g and %g" % tuple(ks))
+    prev = ks[0]
+    for bn in ("1", "10"):
+        d = os.path.join(w, "bn" + bn)
+        run("cylinder", ["-bn", bn, "-steady_continuation_start", "1e1", "-output_fields", "0", "-output_yield_map", "0"], d)
+        s = summary(d)
+        print("Bn %s: K = %.4f" % (bn, s["drag_coefficient"]))
+        if not s["drag_coefficient"] > prev * 1.1:
+            fail("K expected to grow with Bn: %g after %g" % (s["drag_coefficient"], prev))
+        prev = s["drag_coefficient"]
+
+
+def test_cylinder_exact():
+    """The cylinder at Bn 1 by the exact method (ALG2): its drag agrees with
+    the regularised run (m = 1e4) to 1e-4 relative (measured 163.423 and
+    163.422), and the unyielded zones (the plugs at the cylinder's poles and
+    between the walls far from it) cover 5 to 40 % of the domain."""
+    w = work("cylinder_exact")
+    d = os.path.join(w, "exact")
+    run("cylinder", ["-bn", "1", "-method", "exact", "-output_fields", "0"], d)
+    e = summary(d)
+    d = os.path.join(w, "regularised")
+    run("cylinder", ["-bn", "1", "-steady_continuation_start", "1e1", "-output_fields", "0"], d)
+    r = summary(d)
+    rel = abs(e["drag_coefficient"] - r["drag_coefficient"]) / e["drag_coefficient"]
+    print("Bn 1: K exact %.5f, regularised %.5f (rel diff %.1e); unyielded fraction (exact) %.4f" % (e["drag_coefficient"], r["drag_coefficient"], rel, 1 - e["yielded_fraction_exact"]))
+    if not rel <= 1e-4:
+        fail("exact and regularised drag expected within 1e-4, got %g" % rel)
+    if not 0.05 <= 1 - e["yielded_fraction_exact"] <= 0.4:
+        fail("unyielded fraction expected in [0.05, 0.4], got %g" % (1 - e["yielded_fraction_exact"]))
+
+
+def test_cylinder_parallel():
+    """The cylinder on 2 ranks (METIS partition of the Gmsh mesh): the
+    Newtonian drag coefficient equals the 1-rank value to 1e-9."""
+    w = work("cylinder_parallel")
+    opts = ["-rheology_type", "newtonian", "-output_fields", "0"]
+    run("cylinder", opts, os.path.join(w, "p1"))
+    run("cylinder", opts, os.path.join(w, "p2"), ranks=2)
+    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
+    if s2["ranks"] != 2:
+        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
+    rel = abs(s1["drag_coefficient"] - s2["drag_coefficient"]) / s1["drag_coefficient"]
+    print("K: 1 rank %.12e, 2 ranks %.12e, rel diff %.1e" % (s1["drag_coefficient"], s2["drag_coefficient"], rel))
+    if not rel <= 1e-9:
+        fail("1 and 2 ranks expected equal to 1e-9, got %g" % rel)
 
 
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
