@@ -7,7 +7,7 @@ stream function on a grid): unyielded points are drawn black, yielded ones
 light grey, with streamlines (contours of psi) over them. Needs gnuplot
 (Debian package gnuplot-nox).
 
-usage: python3 cases/plot_yield.py RUN_DIR [--out FILE.png] [--title TEXT]
+usage: python3 cases/plot_yield.py RUN_DIR [--out FILE.png] [--title TEXT] [--xrange XMIN XMAX]
 """
 import argparse
 import csv
@@ -23,6 +23,7 @@ def main():
     ap.add_argument("run")
     ap.add_argument("--out", help="the PNG to write (default RUN/yield_map.png)")
     ap.add_argument("--title", default="")
+    ap.add_argument("--xrange", nargs=2, type=float, metavar=("XMIN", "XMAX"), help="the part of the domain to draw (default: all of it)")
     a = ap.parse_args()
     ymap = os.path.join(a.run, "yield_map.csv")
     if not os.path.exists(ymap):
@@ -32,6 +33,10 @@ def main():
     out = os.path.abspath(a.out or os.path.join(a.run, "yield_map.png"))
     with open(ymap) as f:
         rows = list(csv.DictReader(f))
+    if a.xrange:
+        rows = [r for r in rows if a.xrange[0] <= float(r["x"]) <= a.xrange[1]]
+        if not rows:
+            sys.exit("plot_yield.py: --xrange %g %g holds no point of the mesh" % tuple(a.xrange))
     xs = [float(r["x"]) for r in rows]
     ys = [float(r["y"]) for r in rows]
     with tempfile.TemporaryDirectory() as tmp:
@@ -65,15 +70,15 @@ splot 'psi.dat' using 1:2:3 with lines
 unset table
 """ % levels, text=True, cwd=tmp, check=True)
             stream = ", 'contours.dat' using 1:2 with lines lc rgb '#1f4fd0' lw 1.5 title 'streamlines'"
-        script = """set terminal pngcairo size 720,720 font ',11'
+        script = """set terminal pngcairo size %d,%d font ',11'
 set output '%s'
 set size ratio -1
 set xrange [%g:%g]
 set yrange [%g:%g]
-set title '%s'
+set title '%s' noenhanced
 set key outside bottom center horizontal
 plot 'yielded.dat' with points pt 7 ps 0.35 lc rgb '#d8d8d8' title 'yielded', 'unyielded.dat' with points pt 7 ps 0.35 lc rgb 'black' title 'unyielded'%s
-""" % (out, min(xs), max(xs), min(ys), max(ys), a.title.replace("'", ""), stream)
+""" % (900, max(260, min(900, int(900 * (max(ys) - min(ys)) / (max(xs) - min(xs)) + 140))), out, min(xs), max(xs), min(ys), max(ys), a.title.replace("'", ""), stream)
         subprocess.run(["gnuplot"], input=script, text=True, cwd=tmp, check=True)
     print("wrote %s" % out)
 

@@ -78,7 +78,7 @@ set format y '10^{%%L}'
 set grid
 set xlabel 'wall time of the run [s]'
 set ylabel '%s'
-set title '%s'
+set title '%s' noenhanced
 set key outside right
 plot '%s.dat' index 0 using 1:2 with linespoints lw 2 pt 7 title 'Papanastasiou m', \\
      '%s.dat' index 1 using 1:2 with linespoints lw 2 pt 5 title 'Bercovier eps', \\
