@@ -1032,6 +1032,15 @@ INPUT_CASES = [
     ("bn_inf", ["-scene", "couette_cessation", "-bn", "inf"], "-bn"),
     ("bn_nan", ["-scene", "couette_cessation", "-bn", "nan"], "-bn"),
     ("bn_huge", ["-scene", "couette_cessation", "-bn", "1e300"], "-bn"),
+    # the exact method: models, effects and options it does not take
+    ("exact_granular", ["-scene", "bagnold", "-method", "exact"], "-method exact"),
+    ("exact_convection", ["-scene", "cavity", "-re", "10", "-method", "exact"], "-method exact"),
+    ("exact_no_dt", ["-scene", "poiseuille_cessation", "-method", "exact"], "-time_dt"),
+    ("exact_vs_integrator", ["-scene", "poiseuille_cessation", "-method", "exact", "-time_integrator", "ida", "-time_dt", "1e-3"], "-method exact"),
+    ("exact_checkpoint", ["-scene", "poiseuille_cessation", "-method", "exact", "-time_dt", "1e-3", "-checkpoint_every", "5"], "-method exact"),
+    ("exact_tol", ["-scene", "poiseuille", "-method", "exact", "-alg2_tol", "2"], "-alg2_tol"),
+    ("cylinder_cutoff", ["-scene", "cylinder", "-cylinder_cutoff", "2.5"], "-cylinder_cutoff"),
+    ("cavity_grid", ["-scene", "cavity", "-cavity_grid", "5"], "-cavity_grid"),
 ]
 
 

@@ -54,21 +54,40 @@ static inline PetscReal TensorNorm(const PetscScalar *a, PetscInt ns, PetscBool 
   return PetscSqrtReal(plane ? 0.5 * s : s);
 }
 
-PetscErrorCode SlumpExactSolverCreate(SlumpProblem prob, Vec X, SlumpExactSolver *solver)
+/* -alg2_* (read and checked before anything is written, and again by the solver) */
+static PetscErrorCode ReadOptions(MPI_Comm comm, PetscReal *r, PetscReal *tol, PetscInt *maxit, PetscBool *adapt)
 {
-  SlumpExactSolver  s;
+  PetscFunctionBeginUser;
+  *r     = 0.0;
+  *tol   = 0.0;
+  *maxit = 20000;
+  *adapt = PETSC_TRUE;
+  PetscOptionsBegin(comm, NULL, "Exact method (ALG2)", "");
+  PetscCall(PetscOptionsReal("-alg2_r", "ALG2 augmentation r (0: eta_p for a steady state, eta_p + rho L^2/(10 dt) for a step; L the domain's size)", "", *r, r, NULL));
+  PetscCall(PetscOptionsReal("-alg2_tol", "ALG2 tolerance on its primal and dual residuals, relative to the state's strain rate and stress (0: 1e-6 for a steady state, 1e-4 for a time step)", "", *tol, tol, NULL));
+  PetscCall(PetscOptionsBool("-alg2_adapt", "Adapt r to balance ALG2's primal and dual residuals (a factorisation per change)", "", *adapt, adapt, NULL));
+  PetscCall(PetscOptionsInt("-alg2_max_it", "ALG2 iterations per steady solve or time step", "", *maxit, maxit, NULL));
+  PetscOptionsEnd();
+  PetscCheck(*r >= 0, comm, PETSC_ERR_USER_INPUT, "-alg2_r must be non-negative (0: the default); got %g", (double)*r);
+  PetscCheck(*tol >= 0 && *tol < 1, comm, PETSC_ERR_USER_INPUT, "-alg2_tol must lie in [0, 1) (0: the default); got %g", (double)*tol);
+  PetscCheck(*maxit > 0, comm, PETSC_ERR_USER_INPUT, "-alg2_max_it must be a positive integer; got %d", (int)*maxit);
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpExactCheckProblem(SlumpProblem prob)
+{
   SlumpRheology     rheo;
   SlumpRheologyType type;
   SlumpFormulation  form;
   PetscInt          effects;
-  PetscBool         ok, tp, fr;
+  PetscBool         ok = PETSC_FALSE, tp, fr;
+  MPI_Comm          comm;
+  DM                dm;
   PetscFunctionBeginUser;
-  PetscCall(PetscNew(&s));
-  s->prob = prob;
-  PetscCall(PetscObjectGetComm((PetscObject)X, &s->comm));
+  PetscCall(SlumpProblemGetDM(prob, &dm));
+  PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologyGetType(rheo, &type));
-  ok = PETSC_FALSE;
   {
     const char *bingham[] = {SLUMP_RHEOLOGY_PAPANASTASIOU, SLUMP_RHEOLOGY_BERCOVIER, SLUMP_RHEOLOGY_BINGHAM_SIMPLE, SLUMP_RHEOLOGY_NEWTONIAN};
     for (PetscInt i = 0; i < 4; ++i) {
@@ -77,14 +96,35 @@ PetscErrorCode SlumpExactSolverCreate(SlumpProblem prob, Vec X, SlumpExactSolver
       ok = ok || eq;
     }
   }
-  PetscCheck(ok, s->comm, PETSC_ERR_USER_INPUT, "-method exact solves the unregularised Bingham model; -rheology_type %s is not one (give papanastasiou, bercovier or bingham_simple: their viscosity and yield stress are used, the regularisation is not)", type);
+  PetscCheck(ok, comm, PETSC_ERR_USER_INPUT, "-method exact solves the unregularised Bingham model; -rheology_type %s is not one (give papanastasiou, bercovier or bingham_simple: their viscosity and yield stress are used, the regularisation is not)", type);
   PetscCall(SlumpProblemGetFormulation(prob, &form));
-  PetscCheck(form == SLUMP_FORMULATION_PLANE || form == SLUMP_FORMULATION_ANTIPLANE, s->comm, PETSC_ERR_USER_INPUT, "-method exact needs a flow problem (plane or anti-plane), not a transport one");
+  PetscCheck(form == SLUMP_FORMULATION_PLANE || form == SLUMP_FORMULATION_ANTIPLANE, comm, PETSC_ERR_USER_INPUT, "-method exact needs a flow problem (plane or anti-plane), not a transport one");
   PetscCall(SlumpProblemGetEffects(prob, &effects));
-  PetscCheck(!(effects & (SLUMP_EFFECT_CONVECTION | SLUMP_EFFECT_FREE_SURFACE)), s->comm, PETSC_ERR_USER_INPUT, "-method exact is implemented for Stokes-type flows (inertia, body force) of one material; this scene has %s", effects & SLUMP_EFFECT_CONVECTION ? "convection" : "a free surface");
+  PetscCheck(!(effects & (SLUMP_EFFECT_CONVECTION | SLUMP_EFFECT_FREE_SURFACE)), comm, PETSC_ERR_USER_INPUT, "-method exact is implemented for Stokes-type flows (inertia, body force) of one material; this scene has %s", effects & SLUMP_EFFECT_CONVECTION ? "convection" : "a free surface");
   PetscCall(SlumpProblemGetTwoPhase(prob, &tp, NULL, NULL, NULL));
   PetscCall(SlumpProblemHasWallFriction(prob, &fr));
-  PetscCheck(!tp && !fr, s->comm, PETSC_ERR_USER_INPUT, "-method exact is implemented for one material with no-slip or free-slip walls; this scene has %s", tp ? "two phases" : "wall friction");
+  PetscCheck(!tp && !fr, comm, PETSC_ERR_USER_INPUT, "-method exact is implemented for one material with no-slip or free-slip walls; this scene has %s", tp ? "two phases" : "wall friction");
+  {
+    PetscReal r, tol;
+    PetscInt  maxit;
+    PetscBool adapt;
+    PetscCall(ReadOptions(comm, &r, &tol, &maxit, &adapt));
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpExactSolverCreate(SlumpProblem prob, Vec X, SlumpExactSolver *solver)
+{
+  SlumpExactSolver  s;
+  SlumpRheology     rheo;
+  SlumpFormulation  form;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpExactCheckProblem(prob));
+  PetscCall(PetscNew(&s));
+  s->prob = prob;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &s->comm));
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpProblemGetFormulation(prob, &form));
   s->plane = form == SLUMP_FORMULATION_PLANE ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", &s->eta));
   {
@@ -93,19 +133,7 @@ PetscErrorCode SlumpExactSolverCreate(SlumpProblem prob, Vec X, SlumpExactSolver
     s->tau0 = 0.0;
     if (has) PetscCall(SlumpRheologyGetParameter(rheo, "yield_stress", &s->tau0));
   }
-  s->r     = 0.0;
-  s->tol   = 0.0;
-  s->maxit = 20000;
-  PetscOptionsBegin(s->comm, NULL, "Exact method (ALG2)", "");
-  PetscCall(PetscOptionsReal("-alg2_r", "ALG2 augmentation r (0: eta_p for a steady state, eta_p + rho L^2/(10 dt) for a step; L the domain's size)", "", s->r, &s->r, NULL));
-  PetscCall(PetscOptionsReal("-alg2_tol", "ALG2 tolerance on its primal and dual residuals, relative to the state's strain rate and stress (0: 1e-6 for a steady state, 1e-4 for a time step)", "", s->tol, &s->tol, NULL));
-  s->adapt = PETSC_TRUE;
-  PetscCall(PetscOptionsBool("-alg2_adapt", "Adapt r to balance ALG2's primal and dual residuals (a factorisation per change)", "", s->adapt, &s->adapt, NULL));
-  PetscCall(PetscOptionsInt("-alg2_max_it", "ALG2 iterations per steady solve or time step", "", s->maxit, &s->maxit, NULL));
-  PetscOptionsEnd();
-  PetscCheck(s->r >= 0, s->comm, PETSC_ERR_USER_INPUT, "-alg2_r must be non-negative (0: the default); got %g", (double)s->r);
-  PetscCheck(s->tol >= 0 && s->tol < 1, s->comm, PETSC_ERR_USER_INPUT, "-alg2_tol must lie in [0, 1) (0: the default); got %g", (double)s->tol);
-  PetscCheck(s->maxit > 0, s->comm, PETSC_ERR_USER_INPUT, "-alg2_max_it must be a positive integer; got %d", (int)s->maxit);
+  PetscCall(ReadOptions(s->comm, &s->r, &s->tol, &s->maxit, &s->adapt));
   PetscCall(SlumpProblemSetStressVelocity(prob, PETSC_FALSE));
   PetscCall(SlumpProblemGetQuadratureLayout(prob, &s->npt, &s->ns));
   PetscCall(PetscCalloc5(s->npt * s->ns, &s->g, s->npt * s->ns, &s->gam, s->npt * s->ns, &s->lam, s->npt * s->ns, &s->T, s->npt, &s->w));
@@ -351,7 +379,7 @@ PetscErrorCode SlumpIntegratorSolve_Exact(SlumpIntegrator ti, Vec X)
   PetscBool        stop = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
-  PetscCheck(!ti->restarted, comm, PETSC_ERR_SUP, "-restart is not available with -method exact");
+  PetscCheck(!ti->restarted, comm, PETSC_ERR_USER_INPUT, "-restart is not available with -method exact");
   N  = (PetscInt)PetscCeilReal((ti->tfinal - ti->t0) / ti->dt - 1e-9);
   dt = (ti->tfinal - ti->t0) / N;
   PetscCall(SlumpExactSolverCreate(ti->prob, X, &s));

@@ -309,7 +309,7 @@ PetscErrorCode SlumpIntegratorSetFromOptions(SlumpIntegrator ti)
   PetscCheck(ti->dt >= 0, comm, PETSC_ERR_USER_INPUT, "-time_dt must be non-negative; got %g", (double)ti->dt);
   PetscCheck(ti->type != SLUMP_INTEGRATOR_BDF2 || ti->dt > 0, comm, PETSC_ERR_USER_INPUT, "-time_integrator bdf2 needs a positive -time_dt");
   PetscCheck(ti->type != SLUMP_INTEGRATOR_EXACT || ti->dt > 0, comm, PETSC_ERR_USER_INPUT, "-method exact needs a positive -time_dt (its backward Euler step)");
-  PetscCheck(ti->type != SLUMP_INTEGRATOR_EXACT || (ti->ck_every == 0 && ti->ck_interval == 0 && !ti->restart_file[0]), comm, PETSC_ERR_SUP, "-method exact does not write or read checkpoints (-checkpoint_every, -checkpoint_interval, -restart): its stress multipliers are not saved");
+  PetscCheck(ti->type != SLUMP_INTEGRATOR_EXACT || (ti->ck_every == 0 && ti->ck_interval == 0 && !ti->restart_file[0]), comm, PETSC_ERR_USER_INPUT, "-method exact does not write or read checkpoints (-checkpoint_every, -checkpoint_interval, -restart): its stress multipliers are not saved");
   PetscCheck(ti->nonlin_conv_coef > 0 && ti->nonlin_conv_coef <= 1, comm, PETSC_ERR_USER_INPUT, "-ida_nonlin_conv_coef must lie in (0, 1]; got %g", (double)ti->nonlin_conv_coef);
   PetscCheck(ti->max_nonlin_iters > 0, comm, PETSC_ERR_USER_INPUT, "-ida_max_nonlin_iters must be a positive integer");
   PetscCheck(ti->restart_step > 0 && ti->restart_step <= 1, comm, PETSC_ERR_USER_INPUT, "-ida_restart_step must lie in (0, 1]; got %g", (double)ti->restart_step);

@@ -151,6 +151,9 @@ PETSC_EXTERN PetscErrorCode SlumpBinghamStripReference(const SlumpBinghamStripSp
  * (integrator type exact). Options -alg2_r, -alg2_tol, -alg2_max_it, and
  * the u-step's linear solver under the prefix alg2_ (default LU). */
 typedef struct _n_SlumpExactSolver *SlumpExactSolver;
+/* One sentence unless the problem is one the exact method solves (Bingham or
+   Newtonian, one material, no convection, free surface or wall friction). */
+PETSC_EXTERN PetscErrorCode SlumpExactCheckProblem(SlumpProblem prob);
 PETSC_EXTERN PetscErrorCode SlumpExactSolverCreate(SlumpProblem prob, Vec X, SlumpExactSolver *s);
 PETSC_EXTERN PetscErrorCode SlumpExactSolverDestroy(SlumpExactSolver *s);
 PETSC_EXTERN PetscErrorCode SlumpExactSolverSolve(SlumpExactSolver s, PetscReal t, PetscReal alpha, Vec beta, PetscReal gref, Vec X, PetscBool *converged, PetscInt *its);

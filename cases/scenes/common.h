@@ -94,8 +94,10 @@ static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, Slum
     PetscBool   exact;
     PetscCall(SlumpRheologyGetRegularisation(r0, &regname, &target, &larger));
     PetscCall(PetscOptionsHasName(NULL, NULL, "-steady_continuation_start", &set));
-    /* option -method: regularised or exact (the driver's option; the exact method's initial state is its own steady state) */
-    PetscCall(PetscOptionsGetString(NULL, NULL, "-method", method, sizeof(method), NULL));
+    /* the driver's -method (listed in its group): the exact method's initial
+       state is its own steady state */
+    const char *method_opt = "-method";
+    PetscCall(PetscOptionsGetString(NULL, NULL, method_opt, method, sizeof(method), NULL));
     PetscCall(PetscStrcmp(method, "exact", &exact));
     if (exact && !newtonian) PetscCall(SlumpSteadySolveExact(p0, X0, &st, NULL));
     else if (regname && larger && target > 1e2 && !set) {

@@ -105,6 +105,7 @@ PetscErrorCode SlumpSceneCreate_Cylinder(SlumpScene scene, SlumpProblem prob, MP
   PetscCall(PetscOptionsReal("-bn", "Bingham number tau0 R/(eta_p U), U the mean inlet velocity", "", bn, &bn, NULL));
   PetscOptionsEnd();
   PetscCheck(bn >= 0, comm, PETSC_ERR_USER_INPUT, "-bn must be non-negative; got %g", (double)bn);
+  PetscCheck(c->cut > 1 && c->cut < 2, comm, PETSC_ERR_USER_INPUT, "-cylinder_cutoff must lie in (1, 2) (radii R, inside the walls at 2 R); got %g", (double)c->cut);
   scene->steady = PETSC_TRUE;
   PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh_file", &has));
   if (!has) {
