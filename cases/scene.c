@@ -23,6 +23,7 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DuctCessation(SlumpScene, SlumpProb
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CavityCessation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Cavity(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Cylinder(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Expansion(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_LevelSetRotation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DamBreak(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_BinghamDamBreak(SlumpScene, SlumpProblem, MPI_Comm);
@@ -50,6 +51,7 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("cavity_cessation", "Bingham lid-driven cavity (steady state by KINSOL), lid stopped at t = 0; enclosed flow", SlumpSceneCreate_CavityCessation));
   PetscCall(SlumpSceneRegister("cavity", "steady Bingham lid-driven cavity (Re >= 0): stream-function maximum, vortex centre, unyielded areas", SlumpSceneCreate_Cavity));
   PetscCall(SlumpSceneRegister("cylinder", "steady Bingham flow past a cylinder between walls (blockage 1/2, Gmsh mesh): drag coefficient", SlumpSceneCreate_Cylinder));
+  PetscCall(SlumpSceneRegister("expansion", "steady Bingham flow through a planar 1:2 sudden expansion (Gmsh mesh): corner dead zone, developed flow downstream", SlumpSceneCreate_Expansion));
   PetscCall(SlumpSceneRegister("poiseuille", "steady Bingham plane Poiseuille flow driven by a pressure gradient; analytic solution", SlumpSceneCreate_Poiseuille));
   PetscCall(SlumpSceneRegister("decay", "Newtonian flow between plates decaying as sin(pi y) exp(-pi^2 nu t); analytic solution", SlumpSceneCreate_Decay));
   PetscCall(SlumpSceneRegister("couette_startup", "Newtonian Couette start-up, top plate accelerating as 1 - exp(-t/tau); exact series solution", SlumpSceneCreate_CouetteStartup));

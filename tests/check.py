@@ -2409,6 +2409,53 @@ def test_cylinder_parallel():
         fail("1 and 2 ranks expected equal to 1e-9, got %g" % rel)
 
 
+def test_expansion():
+    """Planar 1:2 sudden expansion on the shipped Gmsh mesh.
+    (1) Newtonian: the flow 20 h downstream is the developed parabola of
+    mean velocity U/2 (relative L2 difference <= 1e-6; P2 holds it exactly,
+    measured 1e-15), with mean velocity 0.5 within 1e-4.
+    (2) Bingham (Papanastasiou m = 1e4): the developed Bingham profile
+    downstream within 2 % (measured 0.5 % at Bn 1, 0.8 % at Bn 5), mass
+    conserved to 1e-3, and the corner's stagnant area (|u| < 1e-3 U in
+    0 <= x <= 4h, h <= y <= 2h) growing with Bn: Newtonian 0.093, Bn 1
+    0.346, Bn 5 0.481 (the dead zone fills the corner)."""
+    w = work("expansion")
+    d = os.path.join(w, "newtonian")
+    run("expansion", ["-rheology_type", "newtonian", "-output_fields", "0"], d)
+    s = summary(d)
+    print("Newtonian: downstream profile error %.2e, mean %.6f, corner stagnant area %.4f" % (s["downstream_profile_error"], s["downstream_mean_velocity"], s["corner_stagnant_area"]))
+    if not (s["downstream_profile_error"] <= 1e-6 and abs(s["downstream_mean_velocity"] - 0.5) <= 1e-4):
+        fail("Newtonian: developed flow downstream expected exact, got error %g, mean %g" % (s["downstream_profile_error"], s["downstream_mean_velocity"]))
+    prev = s["corner_stagnant_area"]
+    for bn in ("1", "5"):
+        d = os.path.join(w, "bn" + bn)
+        run("expansion", ["-bn", bn, "-steady_continuation_start", "1e1", "-output_fields", "0", "-output_yield_map", "0"], d)
+        s = summary(d)
+        print("Bn %s: downstream profile error %.2e (plug half-width up/down %.3f / %.3f), mean %.5f, corner stagnant area %.4f" % (bn, s["downstream_profile_error"], s["upstream_plug_exact"], s["downstream_plug_exact"], s["downstream_mean_velocity"], s["corner_stagnant_area"]))
+        if not (s["downstream_profile_error"] <= 0.02 and abs(s["downstream_mean_velocity"] - 0.5) <= 1e-3):
+            fail("Bn %s: developed Bingham flow downstream expected within 2 %%, got %g (mean %g)" % (bn, s["downstream_profile_error"], s["downstream_mean_velocity"]))
+        if not s["corner_stagnant_area"] > prev:
+            fail("Bn %s: the corner's stagnant area should grow with Bn: %g after %g" % (bn, s["corner_stagnant_area"], prev))
+        prev = s["corner_stagnant_area"]
+
+
+def test_expansion_parallel():
+    """The expansion (Newtonian) on 2 ranks: the downstream mean velocity
+    and the corner's stagnant area equal the 1-rank values to 1e-9."""
+    w = work("expansion_parallel")
+    opts = ["-rheology_type", "newtonian", "-output_fields", "0"]
+    run("expansion", opts, os.path.join(w, "p1"))
+    run("expansion", opts, os.path.join(w, "p2"), ranks=2)
+    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
+    if s2["ranks"] != 2:
+        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
+    for k in ("downstream_mean_velocity", "corner_stagnant_area", "kinetic_energy"):
+        rel = abs(s1[k] - s2[k]) / max(abs(s1[k]), 1e-300)
+        print("%-26s 1 rank %.12e  2 ranks %.12e  rel diff %.1e" % (k, s1[k], s2[k], rel))
+        if not rel <= 1e-9:
+            fail("%s: 1 and 2 ranks expected equal to 1e-9, got %g" % (k, rel))
+
+
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}
 
 if __name__ == "__main__":

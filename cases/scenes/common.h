@@ -238,3 +238,48 @@ static inline PetscErrorCode SlumpSceneStripExact(SlumpScene scene, SlumpProblem
   *t_arrest = cached[1];
   PetscFunctionReturn(0);
 }
+
+/* The fully developed Bingham flow in a channel |y| <= H (plane
+   Poiseuille) driven by the pressure gradient G: plug |y| <= y0 = tau0/G,
+   u = G/(2 eta) ((H - y0)^2 - (|y| - y0)^2) outside it (Newtonian: tau0 = 0).
+   SlumpChannelProfileSet finds G for a given mean velocity U by bisection
+   (the mean grows monotonically with G); SlumpChannelProfileU is the inflow
+   condition (a SlumpPointFn with the profile as its context). */
+typedef struct {
+  PetscReal H, eta, tau0, G;
+} SlumpChannelProfile;
+
+static inline PetscReal SlumpChannelProfileValue(const SlumpChannelProfile *c, PetscReal y)
+{
+  const PetscReal y0 = c->tau0 / c->G, ay = PetscMax(PetscAbsReal(y), y0);
+  return ay >= c->H ? 0.0 : c->G / (2.0 * c->eta) * (PetscSqr(c->H - y0) - PetscSqr(ay - y0));
+}
+
+static inline PetscReal SlumpChannelMeanVelocity(PetscReal G, PetscReal H, PetscReal eta, PetscReal tau0)
+{
+  const PetscReal y0 = tau0 / G;
+  if (y0 >= H) return 0.0;
+  return G / (2.0 * eta * H) * (PetscSqr(H - y0) * H - PetscPowReal(H - y0, 3) / 3.0);
+}
+
+static inline void SlumpChannelProfileSet(SlumpChannelProfile *c, PetscReal H, PetscReal eta, PetscReal tau0, PetscReal U)
+{
+  PetscReal lo = tau0 / H, hi = PetscMax(1.0, 2.0 * lo);
+  c->H = H;
+  c->eta = eta;
+  c->tau0 = tau0;
+  while (SlumpChannelMeanVelocity(hi, H, eta, tau0) < U) hi *= 2.0;
+  for (PetscInt it = 0; it < 200; ++it) {
+    const PetscReal mid = 0.5 * (lo + hi);
+    if (SlumpChannelMeanVelocity(mid, H, eta, tau0) < U) lo = mid;
+    else hi = mid;
+  }
+  c->G = 0.5 * (lo + hi);
+}
+
+static inline PetscErrorCode SlumpChannelProfileU(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
+{
+  u[0] = SlumpChannelProfileValue((const SlumpChannelProfile *)ctx, x[1]);
+  u[1] = 0.0;
+  return 0;
+}

@@ -22,25 +22,9 @@
 #endif
 
 typedef struct {
-  PetscReal R, H, U, G, tau0, eta, cut;
+  PetscReal           R, H, U, tau0, eta, cut;
+  SlumpChannelProfile inflow;
 } CylinderCtx;
-
-/* Mean velocity over the half channel of the fully developed flow driven by G. */
-static PetscReal MeanVelocity(PetscReal G, PetscReal H, PetscReal eta, PetscReal tau0)
-{
-  const PetscReal y0 = tau0 / G;
-  if (y0 >= H) return 0.0;
-  return G / (2.0 * eta * H) * (PetscSqr(H - y0) * H - PetscPowReal(H - y0, 3) / 3.0);
-}
-
-static PetscErrorCode InletU(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
-{
-  const CylinderCtx *c  = (const CylinderCtx *)ctx;
-  const PetscReal    y0 = c->tau0 / c->G, ay = PetscMax(PetscAbsReal(x[1]), y0);
-  u[0]                  = ay >= c->H ? 0.0 : c->G / (2.0 * c->eta) * (PetscSqr(c->H - y0) - PetscSqr(ay - y0));
-  u[1]                  = 0.0;
-  return 0;
-}
 
 /* 1 on the cylinder, falling linearly to 0 at r = 1.8 R (inside the channel) */
 static void Cutoff(const PetscReal x[], void *ctx, PetscReal *phi, PetscReal dphi[])
@@ -66,7 +50,7 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
   PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));
   PetscCall(SlumpSceneAddResult(scene, "bn", tau0 * c->R / (etap * c->U)));
   PetscCall(SlumpSceneAddResult(scene, "drag_coefficient", 2.0 * Fx / (etap * c->U)));
-  PetscCall(SlumpSceneAddResult(scene, "pressure_gradient_inlet", c->G));
+  PetscCall(SlumpSceneAddResult(scene, "pressure_gradient_inlet", c->inflow.G));
   {
     /* the mean velocity across the outlet and across the cylinder's section
        x = 0 (mass conservation checks; both U), by sampling */
@@ -90,7 +74,7 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
 PetscErrorCode SlumpSceneCreate_Cylinder(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
 {
   CylinderCtx *c;
-  PetscReal    bn = 0.0, lo, hi, lower[2] = {-15.0, 0.0}, upper[2] = {15.0, 2.0};
+  PetscReal    bn = 0.0, lower[2] = {-15.0, 0.0}, upper[2] = {15.0, 2.0};
   PetscBool    has;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
@@ -119,19 +103,11 @@ PetscErrorCode SlumpSceneCreate_Cylinder(SlumpScene scene, SlumpProblem prob, MP
   PetscCall(SlumpProblemSetEffects(prob, 0));
   PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->eta * c->U / c->R));
   c->tau0 = bn * c->eta * c->U / c->R;
-  /* the inlet's pressure gradient: mean velocity U (bisection; monotone in G) */
-  lo = c->tau0 / c->H;
-  hi = PetscMax(1.0, 2.0 * lo);
-  while (MeanVelocity(hi, c->H, c->eta, c->tau0) < c->U) hi *= 2.0;
-  for (PetscInt it = 0; it < 200; ++it) {
-    const PetscReal mid = 0.5 * (lo + hi);
-    if (MeanVelocity(mid, c->H, c->eta, c->tau0) < c->U) lo = mid;
-    else hi = mid;
-  }
-  c->G = 0.5 * (lo + hi);
+  /* the inlet's profile: mean velocity U */
+  SlumpChannelProfileSet(&c->inflow, c->H, c->eta, c->tau0, c->U);
   {
     const PetscInt compy = 1;
-    PetscCall(SlumpProblemAddVelocityBC(prob, "inlet", "inlet", 0, NULL, InletU, NULL, c));
+    PetscCall(SlumpProblemAddVelocityBC(prob, "inlet", "inlet", 0, NULL, SlumpChannelProfileU, NULL, &c->inflow));
     PetscCall(SlumpProblemAddVelocityBC(prob, "outlet_v", "outlet", 1, &compy, SlumpZeroVelocity, NULL, NULL));
     PetscCall(SlumpProblemAddVelocityBC(prob, "wall", "wall", 0, NULL, SlumpZeroVelocity, NULL, NULL));
     PetscCall(SlumpProblemAddVelocityBC(prob, "cylinder", "cylinder", 0, NULL, SlumpZeroVelocity, NULL, NULL));
