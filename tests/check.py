@@ -2158,6 +2158,22 @@ def test_plot_collapse_compare():
         fail("plot_collapse.py wrote front.dat before rejecting --compare")
 
 
+def compare_ranks(name, scene, opts, keys, tol):
+    """Run a scene on 1 and 2 ranks and compare the summary values `keys` to
+    the relative tolerance `tol`."""
+    w = work(name)
+    run(scene, opts, os.path.join(w, "p1"))
+    run(scene, opts, os.path.join(w, "p2"), ranks=2)
+    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
+    if s2["ranks"] != 2:
+        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
+    for k in keys:
+        rel = abs(s1[k] - s2[k]) / max(abs(s1[k]), 1e-300)
+        print("%-26s 1 rank %.12e  2 ranks %.12e  rel diff %.1e" % (k, s1[k], s2[k], rel))
+        if not rel <= tol:
+            fail("%s: 1 and 2 ranks expected equal to %g relative, got %g" % (k, tol, rel))
+
+
 def test_exact_steady():
     """The exact method (-method exact: ALG2 on the mesh, no regularisation).
     (1) Plane Poiseuille, Bn 0.3, 32 cells across: relative L2 velocity error
@@ -2234,26 +2250,7 @@ def test_exact_parallel():
     """The exact method on 2 ranks: the steady duct at Bn 0.1 gives the
     1-rank flow rate and yielded fraction to 1e-6 relative (ALG2 stops at
     its tolerance 1e-6; the partition changes only round-off)."""
-    w = work("exact_parallel")
-    opts = ["-bn", "0.1", "-method", "exact", "-output_fields", "0"]
-    run("duct", opts, os.path.join(w, "p1"))
-    run("duct", opts, os.path.join(w, "p2"), ranks=2)
-    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
-    if s2["ranks"] != 2:
-        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
-    for k in ("flow_rate", "yielded_fraction_exact", "kinetic_energy"):
-        rel = abs(s1[k] - s2[k]) / max(abs(s1[k]), 1e-300)
-        print("%-24s 1 rank %.10e  2 ranks %.10e  rel diff %.2e" % (k, s1[k], s2[k], rel))
-        if not rel <= 1e-6:
-            fail("%s: 1 and 2 ranks expected equal to 1e-6 relative, got %g" % (k, rel))
-
-
-# Vola, Boscardin & Latche (J. Comput. Phys. 187, 2003), Fig. 2a: the
-# stream-function maximum of the creeping Bingham cavity against their yield
-# stress, as digitised by the Basilisk authors (basilisk.fr, sandbox/popinet,
-# file vola2003-2a). Their yield stress is sqrt(2) times ours (Basilisk's
-# lid-bingham.c converts the same way); points read off a plot.
-VOLA_2A = [(1.96842, 0.0824803), (5.03455, 0.0687008), (19.8627, 0.0456693)]
+    compare_ranks("exact_parallel", "duct", ["-bn", "0.1", "-method", "exact", "-output_fields", "0"], ("flow_rate", "yielded_fraction_exact", "kinetic_energy"), 1e-6)
 
 
 def test_cavity():
@@ -2322,18 +2319,8 @@ def test_cavity_exact():
 def test_cavity_parallel():
     """The cavity on 2 ranks (the velocity sampled across ranks): psi_max,
     its centre and the unyielded area equal the 1-rank values to 1e-8."""
-    w = work("cavity_parallel")
-    opts = ["-bn", "2", "-steady_continuation_start", "1e1", "-output_fields", "0", "-newton_rtol", "1e-12"]
-    run("cavity", opts, os.path.join(w, "p1"))
-    run("cavity", opts, os.path.join(w, "p2"), ranks=2)
-    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
-    if s2["ranks"] != 2:
-        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
-    for k in ("psi_max", "psi_x", "psi_y", "unyielded_area", "kinetic_energy"):
-        rel = abs(s1[k] - s2[k]) / max(abs(s1[k]), 1e-300)
-        print("%-16s 1 rank %.12e  2 ranks %.12e  rel diff %.2e" % (k, s1[k], s2[k], rel))
-        if not rel <= 1e-8:
-            fail("%s: 1 and 2 ranks expected equal to 1e-8 relative, got %g" % (k, rel))
+    compare_ranks("cavity_parallel", "cavity", ["-bn", "2", "-steady_continuation_start", "1e1", "-output_fields", "0", "-newton_rtol", "1e-12"],
+                  ("psi_max", "psi_x", "psi_y", "unyielded_area", "kinetic_energy"), 1e-8)
 
 
 def test_cylinder():
@@ -2396,17 +2383,7 @@ def test_cylinder_exact():
 def test_cylinder_parallel():
     """The cylinder on 2 ranks (METIS partition of the Gmsh mesh): the
     Newtonian drag coefficient equals the 1-rank value to 1e-9."""
-    w = work("cylinder_parallel")
-    opts = ["-rheology_type", "newtonian", "-output_fields", "0"]
-    run("cylinder", opts, os.path.join(w, "p1"))
-    run("cylinder", opts, os.path.join(w, "p2"), ranks=2)
-    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
-    if s2["ranks"] != 2:
-        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
-    rel = abs(s1["drag_coefficient"] - s2["drag_coefficient"]) / s1["drag_coefficient"]
-    print("K: 1 rank %.12e, 2 ranks %.12e, rel diff %.1e" % (s1["drag_coefficient"], s2["drag_coefficient"], rel))
-    if not rel <= 1e-9:
-        fail("1 and 2 ranks expected equal to 1e-9, got %g" % rel)
+    compare_ranks("cylinder_parallel", "cylinder", ["-rheology_type", "newtonian", "-output_fields", "0"], ("drag_coefficient", "kinetic_energy"), 1e-9)
 
 
 def test_expansion():
@@ -2442,18 +2419,7 @@ def test_expansion():
 def test_expansion_parallel():
     """The expansion (Newtonian) on 2 ranks: the downstream mean velocity
     and the corner's stagnant area equal the 1-rank values to 1e-9."""
-    w = work("expansion_parallel")
-    opts = ["-rheology_type", "newtonian", "-output_fields", "0"]
-    run("expansion", opts, os.path.join(w, "p1"))
-    run("expansion", opts, os.path.join(w, "p2"), ranks=2)
-    s1, s2 = summary(os.path.join(w, "p1")), summary(os.path.join(w, "p2"))
-    if s2["ranks"] != 2:
-        fail("expected a 2-rank run, summary says %s" % s2["ranks"])
-    for k in ("downstream_mean_velocity", "corner_stagnant_area", "kinetic_energy"):
-        rel = abs(s1[k] - s2[k]) / max(abs(s1[k]), 1e-300)
-        print("%-26s 1 rank %.12e  2 ranks %.12e  rel diff %.1e" % (k, s1[k], s2[k], rel))
-        if not rel <= 1e-9:
-            fail("%s: 1 and 2 ranks expected equal to 1e-9, got %g" % (k, rel))
+    compare_ranks("expansion_parallel", "expansion", ["-rheology_type", "newtonian", "-output_fields", "0"], ("downstream_mean_velocity", "corner_stagnant_area", "kinetic_energy"), 1e-9)
 
 
 TESTS = {k[5:]: v for k, v in globals().items() if k.startswith("test_")}

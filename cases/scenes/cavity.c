@@ -29,8 +29,7 @@ typedef struct {
 static PetscErrorCode LidU(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
 {
   const CavityCtx *c = (const CavityCtx *)ctx;
-  const PetscReal  s = x[0] / c->L;
-  u[0]               = c->regularised ? 16.0 * c->U * s * s * (1.0 - s) * (1.0 - s) : c->U;
+  u[0]               = SlumpSceneLidVelocity(x[0], c->U, c->L, c->regularised);
   u[1]               = 0.0;
   return 0;
 }

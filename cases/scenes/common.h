@@ -1,6 +1,7 @@
 /* Private helpers shared by the scene files. */
 #pragma once
 #include "slumpscene.h"
+#include <unistd.h>
 #include "slumppointwise.h"
 
 static inline PetscErrorCode SlumpZeroVelocity(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar u[], void *ctx)
@@ -282,4 +283,33 @@ static inline PetscErrorCode SlumpChannelProfileU(PetscInt dim, PetscReal t, con
   u[0] = SlumpChannelProfileValue((const SlumpChannelProfile *)ctx, x[1]);
   u[1] = 0.0;
   return 0;
+}
+
+/* The mesh of a scene on a non-rectangular domain: -mesh_file, or the Gmsh
+   file `name` shipped in cases/data (SLUMP_DATA_DIR, the source tree's, set
+   by the build for the scenes that have one) made from its .geo. */
+static inline PetscErrorCode SlumpSceneSetShippedMesh(SlumpScene scene, SlumpProblem prob, MPI_Comm comm, const char dir[], const char name[], const PetscReal lower[2], const PetscReal upper[2])
+{
+  PetscBool has;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh_file", &has));
+  if (!has) {
+    char path[PETSC_MAX_PATH_LEN];
+    int  ok;
+    PetscCall(PetscSNPrintf(path, sizeof(path), "%s/%s.msh", dir, name));
+    ok = access(path, R_OK) == 0;
+    PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "The %s scene's mesh %s is missing; give -mesh_file (a Gmsh mesh made from cases/data/%s.geo)", scene->name, path, name);
+    PetscCall(PetscOptionsSetValue(NULL, "-mesh_file", path));
+    PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
+    PetscCall(PetscOptionsClearValue(NULL, "-mesh_file"));
+  } else PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
+  PetscFunctionReturn(0);
+}
+
+/* The lid of a cavity of side L moving at U: uniform, or 16 U s^2 (1 - s)^2
+   (s = x/L: no corner singularity). */
+static inline PetscReal SlumpSceneLidVelocity(PetscReal x, PetscReal U, PetscReal L, PetscBool regularised)
+{
+  const PetscReal s = x / L;
+  return regularised ? 16.0 * U * s * s * (1.0 - s) * (1.0 - s) : U;
 }

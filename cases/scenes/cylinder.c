@@ -15,7 +15,6 @@
  * radial cut-off (SlumpProblemComputeBoundaryForce); Newtonian: K = 132.36
  * (Alves, Pinho & Oliveira 2001 and the benchmark papers before them). */
 #include "common.h"
-#include <unistd.h>
 
 #ifndef SLUMP_DATA_DIR
   #define SLUMP_DATA_DIR "cases/data"
@@ -75,7 +74,6 @@ PetscErrorCode SlumpSceneCreate_Cylinder(SlumpScene scene, SlumpProblem prob, MP
 {
   CylinderCtx *c;
   PetscReal    bn = 0.0, lower[2] = {-15.0, 0.0}, upper[2] = {15.0, 2.0};
-  PetscBool    has;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   scene->ctx = c;
@@ -91,15 +89,7 @@ PetscErrorCode SlumpSceneCreate_Cylinder(SlumpScene scene, SlumpProblem prob, MP
   PetscCheck(bn >= 0, comm, PETSC_ERR_USER_INPUT, "-bn must be non-negative; got %g", (double)bn);
   PetscCheck(c->cut > 1 && c->cut < 2, comm, PETSC_ERR_USER_INPUT, "-cylinder_cutoff must lie in (1, 2) (radii R, inside the walls at 2 R); got %g", (double)c->cut);
   scene->steady = PETSC_TRUE;
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh_file", &has));
-  if (!has) {
-    const char *path = SLUMP_DATA_DIR "/cylinder.msh";
-    int         ok   = access(path, R_OK) == 0;
-    PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "The cylinder scene's mesh %s is missing; give -mesh_file (a Gmsh mesh from cases/data/cylinder.geo)", path);
-    PetscCall(PetscOptionsSetValue(NULL, "-mesh_file", path));
-    PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
-    PetscCall(PetscOptionsClearValue(NULL, "-mesh_file"));
-  } else PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
+  PetscCall(SlumpSceneSetShippedMesh(scene, prob, comm, SLUMP_DATA_DIR, "cylinder", lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, 0));
   PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->eta * c->U / c->R));
   c->tau0 = bn * c->eta * c->U / c->R;

@@ -17,7 +17,6 @@
  *     the corner's 4 h^2);
  *   - mass conservation: the mean velocity across x = 20 h (U/2). */
 #include "common.h"
-#include <unistd.h>
 
 #ifndef SLUMP_DATA_DIR
   #define SLUMP_DATA_DIR "cases/data"
@@ -80,7 +79,6 @@ PetscErrorCode SlumpSceneCreate_Expansion(SlumpScene scene, SlumpProblem prob, M
 {
   ExpansionCtx *c;
   PetscReal     bn = 0.0, lower[2] = {-10.0, 0.0}, upper[2] = {30.0, 2.0};
-  PetscBool     has;
   PetscFunctionBeginUser;
   PetscCall(PetscNew(&c));
   scene->ctx = c;
@@ -92,15 +90,7 @@ PetscErrorCode SlumpSceneCreate_Expansion(SlumpScene scene, SlumpProblem prob, M
   PetscOptionsEnd();
   PetscCheck(bn >= 0, comm, PETSC_ERR_USER_INPUT, "-bn must be non-negative; got %g", (double)bn);
   scene->steady = PETSC_TRUE;
-  PetscCall(PetscOptionsHasName(NULL, NULL, "-mesh_file", &has));
-  if (!has) {
-    const char *path = SLUMP_DATA_DIR "/expansion.msh";
-    int         ok   = access(path, R_OK) == 0;
-    PetscCheck(ok, comm, PETSC_ERR_FILE_OPEN, "The expansion scene's mesh %s is missing; give -mesh_file (a Gmsh mesh from cases/data/expansion.geo)", path);
-    PetscCall(PetscOptionsSetValue(NULL, "-mesh_file", path));
-    PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
-    PetscCall(PetscOptionsClearValue(NULL, "-mesh_file"));
-  } else PetscCall(SlumpSceneSetMesh(scene, prob, comm, lower, upper));
+  PetscCall(SlumpSceneSetShippedMesh(scene, prob, comm, SLUMP_DATA_DIR, "expansion", lower, upper));
   PetscCall(SlumpProblemSetEffects(prob, 0));
   c->tau0 = bn * c->eta * c->U / c->h;
   PetscCall(SlumpSceneSetBinghamDefaults(prob, c->tau0));
