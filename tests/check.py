@@ -2253,6 +2253,14 @@ def test_exact_parallel():
     compare_ranks("exact_parallel", "duct", ["-bn", "0.1", "-method", "exact", "-output_fields", "0"], ("flow_rate", "yielded_fraction_exact", "kinetic_energy"), 1e-6)
 
 
+# Vola, Boscardin & Latche (J. Comput. Phys. 187, 2003), Fig. 2a: the
+# stream-function maximum of the creeping Bingham cavity against their yield
+# stress, as digitised by the Basilisk authors (basilisk.fr, sandbox/popinet,
+# file vola2003-2a). Their yield stress is sqrt(2) times ours (Basilisk's
+# lid-bingham.c converts the same way); points read off a plot.
+VOLA_2A = [(1.96842, 0.0824803), (5.03455, 0.0687008), (19.8627, 0.0456693)]
+
+
 def test_cavity():
     """Steady lid-driven cavity (32 x 32 cells, uniform lid).
     (1) Newtonian Stokes flow: psi_max = 0.1000 within 0.5 % (measured
