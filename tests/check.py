@@ -2284,6 +2284,14 @@ def test_cavity():
         fail("Stokes cavity: psi on the lid expected <= 3e-3, got %g" % s["psi_top"])
     if not os.path.exists(os.path.join(d, "cavity_grid.csv")):
         fail("cavity_grid.csv not written")
+    # Re = 100 (inertia and convection): Ghia, Ghia & Shin (1982), primary
+    # vortex psi = 0.103423 at (0.6172, 0.7344)
+    d = os.path.join(w, "re100")
+    run("cavity", ["-bn", "0", "-re", "100", "-output_fields", "0"], d)
+    s = summary(d)
+    print("Re 100: psi_max %.6f at (%.4f, %.4f); Ghia et al. 0.103423 at (0.6172, 0.7344)" % (s["psi_max"], s["psi_x"], s["psi_y"]))
+    if not (abs(s["psi_max"] - 0.103423) <= 5e-3 * 0.103423 and abs(s["psi_x"] - 0.6172) <= 0.01 and abs(s["psi_y"] - 0.7344) <= 0.01):
+        fail("Re 100: primary vortex expected within 0.5 %% and 0.01 of Ghia et al.'s, got %g at (%g, %g)" % (s["psi_max"], s["psi_x"], s["psi_y"]))
     prev = None
     for tv, ref in VOLA_2A:
         bn = tv / math.sqrt(2.0)
