@@ -90,6 +90,16 @@ PetscErrorCode SlumpSceneCreate(MPI_Comm comm, const char name[], SlumpProblem p
       (*scene)->tfinal = 1.0;
       (*scene)->dtout  = 0.1;
       PetscCall(scenes[i].create(*scene, prob, comm));
+      {
+        /* -geometry axisymmetric is read by the scenes that offer it */
+        char      geom[32] = "";
+        PetscBool set, planar;
+        PetscInt  axis;
+        PetscCall(PetscOptionsGetString(NULL, NULL, "-geometry", geom, sizeof(geom), &set));
+        PetscCall(SlumpProblemGetAxisymmetric(prob, &axis));
+        PetscCall(PetscStrcmp(geom, "planar", &planar));
+        PetscCheck(!set || axis >= 0 || planar, comm, PETSC_ERR_USER_INPUT, "-geometry %s is not available for the %s scene; the axisymmetric geometry is offered by poiseuille, decay and column_collapse", geom, name);
+      }
       PetscFunctionReturn(0);
     }
   }

@@ -33,6 +33,11 @@ struct _n_SlumpAssembly {
   PetscReal       w[MAXQ], xi[MAXQ * 3];
   PetscReal       phi[MAXQ * MAXNB];    /* value of basis b (its non-zero component) at q */
   PetscReal       dphi[MAXQ * MAXNB * 3]; /* reference gradient */
+  /* the kernels' layout: planar, that of the fields; axisymmetric (axis >= 0,
+     the radial coordinate x[axis]), three-dimensional (kdim = 3): the
+     velocity has a third (hoop) component, always 0, and its gradient the
+     entry (2,2) = u_r / r; scalar fields have a zero third derivative */
+  PetscInt        axis, kdim, kNc[SLUMP_MAX_FIELDS];
   PetscInt        uOff[SLUMP_MAX_FIELDS + 1], uOff_x[SLUMP_MAX_FIELDS + 1];
   /* per cell, computed once (the mesh does not move) */
   PetscInt        ncell;
@@ -132,11 +137,15 @@ PetscErrorCode SlumpAssemblyCreate(SlumpProblem prob)
     PetscCall(PetscTabulationDestroy(&T));
   }
   a->NbTot = a->off[a->Nf - 1] + a->Nb[a->Nf - 1];
+  a->axis  = prob->axis;
+  PetscCheck(a->axis < 0 || (a->dim == 2 && a->Nc[0] == 2), prob->comm, PETSC_ERR_SUP, "The axisymmetric formulation needs a 2-D mesh and the plane (velocity-pressure) formulation");
+  a->kdim = a->axis >= 0 ? 3 : a->dim;
+  for (PetscInt f = 0; f < a->Nf; ++f) a->kNc[f] = (a->axis >= 0 && f == 0) ? 3 : a->Nc[f];
   for (PetscInt f = 0, o = 0, ox = 0; f < a->Nf; ++f) {
     a->uOff[f]   = o;
     a->uOff_x[f] = ox;
-    o += a->Nc[f];
-    ox += a->Nc[f] * a->dim;
+    o += a->kNc[f];
+    ox += a->kNc[f] * a->kdim;
     a->uOff[f + 1]   = o;
     a->uOff_x[f + 1] = ox;
   }
@@ -162,7 +171,7 @@ typedef struct {
 
 static inline void EvaluateCell(SlumpAssembly a, PetscInt c, const PetscScalar *xa, const PetscScalar *ta, const PetscScalar *la, CellData *cd)
 {
-  const PetscInt   dim = a->dim, ntot = a->uOff[a->Nf], N = a->NbTot, *li = &a->lidx[c * N];
+  const PetscInt   dim = a->dim, kd = a->kdim, ntot = a->uOff[a->Nf], N = a->NbTot, *li = &a->lidx[c * N];
   const PetscReal *g = &a->geom[c * GEOMSIZE(dim)], *v0 = g, *J = g + dim, *invJ = g + dim + dim * dim;
   PetscScalar      xv[MAXNB], tv[MAXNB], lv[MAXNB];
   cd->detJ = g[dim + 2 * dim * dim];
@@ -179,7 +188,7 @@ static inline void EvaluateCell(SlumpAssembly a, PetscInt c, const PetscScalar *
     }
     PetscScalar *ul = &cd->ul[q * 8], *ulx = &cd->ulx[q * 24];
     for (PetscInt i = 0; i < ntot; ++i) u[i] = ut[i] = ul[i] = 0.0;
-    for (PetscInt i = 0; i < ntot * dim; ++i) ux[i] = ulx[i] = 0.0;
+    for (PetscInt i = 0; i < ntot * kd; ++i) ux[i] = ulx[i] = 0.0;
     for (PetscInt f = 0; f < a->Nf; ++f) {
       for (PetscInt b = 0; b < a->Nb[f]; ++b) {
         const PetscInt   B = a->off[f] + b, c = a->comp[B];
@@ -191,14 +200,26 @@ static inline void EvaluateCell(SlumpAssembly a, PetscInt c, const PetscScalar *
         }
         u[a->uOff[f] + c] += ph * xv[B];
         ut[a->uOff[f] + c] += ph * tv[B];
-        for (PetscInt d = 0; d < dim; ++d) ux[a->uOff_x[f] + c * dim + d] += G[d] * xv[B];
+        for (PetscInt d = 0; d < dim; ++d) ux[a->uOff_x[f] + c * kd + d] += G[d] * xv[B];
         if (la) {
           ul[a->uOff[f] + c] += ph * lv[B];
-          for (PetscInt d = 0; d < dim; ++d) ulx[a->uOff_x[f] + c * dim + d] += G[d] * lv[B];
+          for (PetscInt d = 0; d < dim; ++d) ulx[a->uOff_x[f] + c * kd + d] += G[d] * lv[B];
         }
       }
     }
+    if (a->axis >= 0) { /* the hoop strain u_r / r (quadrature points lie off the axis) */
+      const PetscReal r = cd->x[q * 3 + a->axis];
+      ux[a->uOff_x[0] + 8] = u[a->uOff[0] + a->axis] / r;
+      if (la) ulx[a->uOff_x[0] + 8] = ul[a->uOff[0] + a->axis] / r;
+    }
   }
+}
+
+/* The factor of the quadrature weight at point q of the cell in cd: 1, or
+   the radius (axisymmetric: integrals per radian of the solid of revolution). */
+static inline PetscReal RadialWeight(SlumpAssembly a, const CellData *cd, PetscInt q)
+{
+  return a->axis >= 0 ? cd->x[q * 3 + a->axis] : 1.0;
 }
 
 PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, Vec locF)
@@ -208,7 +229,7 @@ PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, V
   PetscSection       s;
   PetscPointFunc     f0[SLUMP_MAX_FIELDS], f1[SLUMP_MAX_FIELDS];
   const PetscScalar *constants;
-  PetscInt           nc, dim = a->dim;
+  PetscInt           nc, dim = a->dim, kd = a->kdim;
   CellData          *cd;
   PetscFunctionBeginUser;
   PetscCall(DMGetDS(prob->dm, &ds));
@@ -230,17 +251,18 @@ PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, V
     EvaluateCell(a, c, xa, ta, la, cd);
     PetscCall(PetscArrayzero(ev, a->NbTot));
     for (PetscInt q = 0; q < a->Nq; ++q) {
-      const PetscReal wq = a->w[q] * cd->detJ;
+      const PetscReal wq = a->w[q] * cd->detJ * RadialWeight(a, cd, q), ir = a->axis >= 0 ? 1.0 / cd->x[q * 3 + a->axis] : 0.0;
       for (PetscInt f = 0; f < a->Nf; ++f) {
         PetscScalar r0[3] = {0, 0, 0}, r1[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
         const PetscScalar *ul = NfA ? &cd->ul[q * 8] : NULL, *ulx = NfA ? &cd->ulx[q * 24] : NULL;
-        if (f0[f]) f0[f](dim, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, ul, NULL, ulx, t, &cd->x[q * 3], nc, constants, r0);
-        if (f1[f]) f1[f](dim, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, ul, NULL, ulx, t, &cd->x[q * 3], nc, constants, r1);
+        if (f0[f]) f0[f](kd, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, ul, NULL, ulx, t, &cd->x[q * 3], nc, constants, r0);
+        if (f1[f]) f1[f](kd, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, ul, NULL, ulx, t, &cd->x[q * 3], nc, constants, r1);
         for (PetscInt b = 0; b < a->Nb[f]; ++b) {
           const PetscInt   B = a->off[f] + b, c = a->comp[B];
           const PetscReal *G = &cd->G[(q * MAXNB + B) * 3];
           PetscScalar      v = r0[c] * a->phi[q * MAXNB + B];
-          for (PetscInt d = 0; d < dim; ++d) v += r1[c * dim + d] * G[d];
+          for (PetscInt d = 0; d < dim; ++d) v += r1[c * kd + d] * G[d];
+          if (f == 0 && c == a->axis) v += r1[8] * a->phi[q * MAXNB + B] * ir; /* hoop: tau_tt v_r / r */
           ev[B] += wq * v;
         }
       }
@@ -314,7 +336,7 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
   SlumpAssembly      a = prob->assembly;
   PetscDS            ds;
   const PetscScalar *constants;
-  PetscInt           nc, dim = a->dim;
+  PetscInt           nc, dim = a->dim, kd = a->kdim;
   CellData          *cd;
   PetscFunctionBeginUser;
   PetscCall(DMGetDS(prob->dm, &ds));
@@ -337,37 +359,44 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
     EvaluateCell(a, c, xa, ta, la, cd);
     PetscCall(PetscArrayzero(em, N * N));
     for (PetscInt q = 0; q < a->Nq; ++q) {
-      const PetscReal wq = a->w[q] * cd->detJ;
+      const PetscReal wq = a->w[q] * cd->detJ * RadialWeight(a, cd, q), ir = a->axis >= 0 ? 1.0 / cd->x[q * 3 + a->axis] : 0.0;
       for (PetscInt f = 0; f < a->Nf; ++f)
         for (PetscInt h = 0; h < a->Nf; ++h) {
           PetscScalar    G0[9], G1[27], G2[27], G3[81];
-          const PetscInt NcI = a->Nc[f], NcJ = a->Nc[h];
+          const PetscInt NcI = a->kNc[f], NcJ = a->kNc[h];
           PetscBool      has[4];
           PetscScalar   *gg[4] = {G0, G1, G2, G3};
           for (PetscInt k = 0; k < 4; ++k) {
             has[k] = g[f][h][k] ? PETSC_TRUE : PETSC_FALSE;
             if (has[k]) {
-              const PetscInt n = NcI * NcJ * (k == 0 ? 1 : (k == 3 ? dim * dim : dim));
+              const PetscInt n = NcI * NcJ * (k == 0 ? 1 : (k == 3 ? kd * kd : kd));
               PetscCall(PetscArrayzero(gg[k], n));
-              g[f][h][k](dim, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, NfA ? &cd->ul[q * 8] : NULL, S ? &S[(c * a->Nq + q) * prob->dualNs] : NULL, NfA ? &cd->ulx[q * 24] : NULL, t, shift, &cd->x[q * 3], nc, constants, gg[k]);
+              g[f][h][k](kd, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, NfA ? &cd->ul[q * 8] : NULL, S ? &S[(c * a->Nq + q) * prob->dualNs] : NULL, NfA ? &cd->ulx[q * 24] : NULL, t, shift, &cd->x[q * 3], nc, constants, gg[k]);
             }
           }
           if (!has[0] && !has[1] && !has[2] && !has[3]) continue;
           for (PetscInt i = 0; i < a->Nb[f]; ++i) {
             const PetscInt   Ii = a->off[f] + i, fc = a->comp[Ii];
             const PetscReal  pi = a->phi[q * MAXNB + Ii], *Gi = &cd->G[(q * MAXNB + Ii) * 3];
+            /* axisymmetric: a radial velocity test function also has the
+               gradient entry (2,2) = v_r / r, of the hoop component 2 */
+            const PetscReal  hi = (f == 0 && fc == a->axis) ? pi * ir : 0.0;
             PetscScalar      A[3], B[3][3];
             /* contract the test function once: row i against any trial of component gc
                is (A[gc]) phi_j + B[gc] . grad phi_j */
             for (PetscInt gc = 0; gc < NcJ; ++gc) {
-              const PetscInt k = fc * NcJ + gc;
+              const PetscInt k = fc * NcJ + gc, kh = 2 * NcJ + gc;
               A[gc]            = has[0] ? G0[k] * pi : 0.0;
-              if (has[2])
-                for (PetscInt d = 0; d < dim; ++d) A[gc] += G2[k * dim + d] * Gi[d];
-              for (PetscInt e = 0; e < dim; ++e) {
-                B[gc][e] = has[1] ? G1[k * dim + e] * pi : 0.0;
-                if (has[3])
-                  for (PetscInt d = 0; d < dim; ++d) B[gc][e] += G3[(k * dim + d) * dim + e] * Gi[d];
+              if (has[2]) {
+                for (PetscInt d = 0; d < dim; ++d) A[gc] += G2[k * kd + d] * Gi[d];
+                if (hi != 0.0) A[gc] += G2[kh * kd + 2] * hi;
+              }
+              for (PetscInt e = 0; e < kd; ++e) {
+                B[gc][e] = has[1] ? G1[k * kd + e] * pi : 0.0;
+                if (has[3]) {
+                  for (PetscInt d = 0; d < dim; ++d) B[gc][e] += G3[(k * kd + d) * kd + e] * Gi[d];
+                  if (hi != 0.0) B[gc][e] += G3[(kh * kd + 2) * kd + e] * hi;
+                }
               }
             }
             PetscScalar *row = &em[Ii * N + a->off[h]];
@@ -376,6 +405,7 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
               const PetscReal *Gj = &cd->G[(q * MAXNB + Jj) * 3];
               PetscScalar      v  = A[gc] * a->phi[q * MAXNB + Jj];
               for (PetscInt e = 0; e < dim; ++e) v += B[gc][e] * Gj[e];
+              if (h == 0 && gc == a->axis) v += B[2][2] * a->phi[q * MAXNB + Jj] * ir; /* the trial's hoop entry */
               row[j] += wq * v;
             }
           }
@@ -417,7 +447,7 @@ PetscErrorCode SlumpAssembleDual(SlumpProblem prob, PetscReal t, Vec locX, Vec l
   for (PetscInt c = 0; c < a->ncell; ++c) {
     EvaluateCell(a, c, xa, NULL, da, cd); /* the correction's values and gradients in ul, ulx */
     for (PetscInt q = 0; q < a->Nq; ++q) {
-      const PetscBool y = pw.dual(a->dim, a->Nf, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ux[q * 24], da ? &cd->ul[q * 8] : NULL, da ? &cd->ulx[q * 24] : NULL, &cd->x[q * 3], constants, &S[(c * a->Nq + q) * prob->dualNs]);
+      const PetscBool y = pw.dual(a->kdim, a->Nf, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ux[q * 24], da ? &cd->ul[q * 8] : NULL, da ? &cd->ulx[q * 24] : NULL, &cd->x[q * 3], constants, &S[(c * a->Nq + q) * prob->dualNs]);
       if (yielded) yielded[c * a->Nq + q] = y;
     }
   }
@@ -432,7 +462,7 @@ PetscErrorCode SlumpAssemblyGetSizes(SlumpProblem prob, PetscInt *ncell, PetscIn
   PetscFunctionBeginUser;
   *ncell = prob->assembly->ncell;
   *nq    = prob->assembly->Nq;
-  *dim   = prob->assembly->dim;
+  *dim   = prob->assembly->kdim; /* the kernels' (3 when axisymmetric) */
   PetscFunctionReturn(0);
 }
 
@@ -458,10 +488,10 @@ PetscErrorCode SlumpAssembleIntegrals(SlumpProblem prob, PetscReal t, Vec locX, 
   for (PetscInt c = 0; c < a->ncell; ++c) {
     EvaluateCell(a, c, xa, NULL, NULL, cd);
     for (PetscInt q = 0; q < a->Nq; ++q) {
-      const PetscReal wq = a->w[q] * cd->detJ;
+      const PetscReal wq = a->w[q] * cd->detJ * RadialWeight(a, cd, q);
       for (PetscInt k = 0; k < n; ++k) {
         PetscScalar v = 0.0;
-        obj[k](a->dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, &v);
+        obj[k](a->kdim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, &v);
         result[k] += wq * PetscRealPart(v);
       }
     }
@@ -470,6 +500,37 @@ PetscErrorCode SlumpAssembleIntegrals(SlumpProblem prob, PetscReal t, Vec locX, 
   PetscCall(PetscFree(cd));
   PetscCall(PetscLogEventEnd(SLUMP_Integral, 0, 0, 0, 0));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, result, (PetscMPIInt)n, MPIU_REAL, MPIU_SUM, prob->comm));
+  PetscFunctionReturn(0);
+}
+
+/* The L2 distance of fields 0 (velocity) and 1 (pressure) of locX from the
+   functions fn[0], fn[1] (NULL: skip, err -1), with the quadrature of the
+   cell loop and its weight (the radius, axisymmetric; collective). */
+PetscErrorCode SlumpAssembleL2Diff(SlumpProblem prob, PetscReal t, Vec locX, SlumpPointFn fn[2], void *ctx, PetscReal err[2])
+{
+  SlumpAssembly      a = prob->assembly;
+  const PetscScalar *xa;
+  CellData          *cd;
+  PetscReal          e[2] = {0.0, 0.0};
+  PetscFunctionBeginUser;
+  PetscCall(PetscMalloc1(1, &cd));
+  PetscCall(VecGetArrayRead(locX, &xa));
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    EvaluateCell(a, c, xa, NULL, NULL, cd);
+    for (PetscInt q = 0; q < a->Nq; ++q) {
+      const PetscReal wq = a->w[q] * cd->detJ * RadialWeight(a, cd, q);
+      for (PetscInt f = 0; f < 2 && f < a->Nf; ++f) {
+        PetscScalar v[3] = {0, 0, 0};
+        if (!fn[f]) continue;
+        PetscCall(fn[f](a->dim, t, &cd->x[q * 3], a->Nc[f], v, ctx));
+        for (PetscInt k = 0; k < a->Nc[f]; ++k) e[f] += wq * PetscSqr(PetscRealPart(cd->u[q * 8 + a->uOff[f] + k] - v[k]));
+      }
+    }
+  }
+  PetscCall(VecRestoreArrayRead(locX, &xa));
+  PetscCall(PetscFree(cd));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, e, 2, MPIU_REAL, MPIU_SUM, prob->comm));
+  for (PetscInt f = 0; f < 2; ++f) err[f] = fn[f] ? PetscSqrtReal(e[f]) : -1.0;
   PetscFunctionReturn(0);
 }
 
@@ -560,9 +621,10 @@ PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const 
             }
             for (PetscInt q = 0; q < 3; ++q) {
               const PetscReal s = 0.5 * (gp[q] + 1.0), xq[2] = {xf[0][0] + s * (xf[1][0] - xf[0][0]), xf[0][1] + s * (xf[1][1] - xf[0][1])};
+              const PetscReal wr = a->axis >= 0 ? xq[a->axis] : 1.0;
               func(dim, a->Nf, 0, a->uOff, a->uOff_x, uq[q], zero, zero, zoff, zoff, NULL, NULL, NULL, 0.0, xq, nrm, nc, constants, &f);
-              Q[0] += 0.5 * len * gw[q] * PetscRealPart(f);
-              Q[1] += 0.5 * len * gw[q];
+              Q[0] += 0.5 * len * gw[q] * wr * PetscRealPart(f);
+              Q[1] += 0.5 * len * gw[q] * wr;
             }
           } else {
             PetscCall(PetscFECreateTabulation(fe, 1, 3, xi, 0, &T));
@@ -570,8 +632,9 @@ PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem prob, Vec locX, const 
               PetscReal u[2] = {0, 0};
               for (PetscInt b = 0; b < a->Nb[0]; ++b)
                 for (PetscInt cc2 = 0; cc2 < 2; ++cc2) u[cc2] += T->T[0][(q * a->Nb[0] + b) * 2 + cc2] * PetscRealPart(xa[a->lidx[c * N + a->off[0] + b]]);
-              Q[0] += 0.5 * len * gw[q] * (comp < 0 ? u[0] * nrm[0] + u[1] * nrm[1] : u[comp]);
-              Q[1] += 0.5 * len * gw[q];
+              const PetscReal s = 0.5 * (gp[q] + 1.0), wr = a->axis >= 0 ? xf[0][a->axis] + s * (xf[1][a->axis] - xf[0][a->axis]) : 1.0;
+              Q[0] += 0.5 * len * gw[q] * wr * (comp < 0 ? u[0] * nrm[0] + u[1] * nrm[1] : u[comp]);
+              Q[1] += 0.5 * len * gw[q] * wr;
             }
             PetscCall(PetscTabulationDestroy(&T));
           }
@@ -617,6 +680,7 @@ PetscErrorCode SlumpProblemGetQuadratureLayout(SlumpProblem prob, PetscInt *npoi
   SlumpAssembly a = prob->assembly;
   PetscFunctionBeginUser;
   PetscCheck(a, prob->comm, PETSC_ERR_ORDER, "Call SlumpProblemSetUp() first");
+  PetscCheck(a->axis < 0, prob->comm, PETSC_ERR_SUP, "Quadrature-point fields (the exact method) are planar only");
   if (npoints) *npoints = a->ncell * a->Nq;
   if (ns) *ns = a->Nc[0] == 1 ? a->dim : a->dim * a->dim;
   PetscFunctionReturn(0);
@@ -822,7 +886,7 @@ PetscErrorCode SlumpProblemWriteYieldMap(SlumpProblem prob, PetscReal t, Vec X, 
       loc[3 * i]       = cd->x[q * 3];
       loc[3 * i + 1]   = cd->x[q * 3 + 1];
       if (prob->yieldMap) v = prob->yieldMap[i];
-      else if (pw.yielded) pw.yielded(a->dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, &v);
+      else if (pw.yielded) pw.yielded(a->kdim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, &v);
       else v = 1.0;
       loc[3 * i + 2] = PetscRealPart(v) > 0.5 ? 1.0 : 0.0;
     }
@@ -910,7 +974,7 @@ static PetscErrorCode ProjectZero(PetscInt dim, PetscReal t, const PetscReal x[]
 PetscErrorCode SlumpProblemComputeBoundaryForce(SlumpProblem prob, PetscReal t, Vec X, SlumpCutoffFn cutoff, void *ctx, PetscInt comp, PetscReal *force)
 {
   SlumpAssembly      a = prob->assembly;
-  const PetscInt     dim = a->dim;
+  const PetscInt     dim = a->dim, kd = a->kdim;
   PetscDS            ds;
   PetscPointFunc     f0, f1;
   const PetscScalar *constants, *xa, *pa;
@@ -921,6 +985,7 @@ PetscErrorCode SlumpProblemComputeBoundaryForce(SlumpProblem prob, PetscReal t, 
   CellData          *cd;
   PetscFunctionBeginUser;
   PetscCheck(a->Nc[0] == dim && comp >= 0 && comp < dim, prob->comm, PETSC_ERR_ARG_WRONG, "The boundary force needs the plane formulation and a component below %d", (int)dim);
+  PetscCheck(!plastic || a->axis < 0, prob->comm, PETSC_ERR_SUP, "The boundary force with a plastic stress is planar only");
   {
     CutoffProjection cp = {cutoff, ctx, comp};
     PetscErrorCode (*funcs[SLUMP_MAX_FIELDS])(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar[], void *);
@@ -951,16 +1016,17 @@ PetscErrorCode SlumpProblemComputeBoundaryForce(SlumpProblem prob, PetscReal t, 
       PetscScalar        r0[3] = {0, 0, 0}, r1[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
       const PetscScalar *v = &cd->ul[q * 8], *vx = &cd->ulx[q * 24];
       PetscReal          s = PetscAbsReal(PetscRealPart(v[comp]));
-      for (PetscInt d = 0; d < dim; ++d) s += PetscAbsReal(PetscRealPart(vx[comp * dim + d]));
+      for (PetscInt d = 0; d < dim; ++d) s += PetscAbsReal(PetscRealPart(vx[comp * kd + d]));
       if (s == 0.0) continue;
-      if (f0) f0(dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r0);
-      if (f1) f1(dim, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r1);
+      if (f0) f0(kd, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r0);
+      if (f1) f1(kd, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r1);
       if (plastic)
         for (PetscInt d = 0; d < dim; ++d) r1[comp * dim + d] += prob->plasticStress[(c * a->Nq + q) * dim * dim + comp * dim + d];
       {
+        /* phi_h e_comp's value and gradient (with its hoop entry, axisymmetric) */
         PetscReal val = PetscRealPart(r0[comp] * v[comp]);
-        for (PetscInt d = 0; d < dim; ++d) val += PetscRealPart(r1[comp * dim + d] * vx[comp * dim + d]);
-        F -= a->w[q] * cd->detJ * val;
+        for (PetscInt i = 0; i < kd * kd; ++i) val += PetscRealPart(r1[i] * vx[i]);
+        F -= a->w[q] * cd->detJ * RadialWeight(a, cd, q) * val;
       }
     }
   }

@@ -14,12 +14,12 @@ static void KineticEnergy(SLUMP_PW_ARGS, PetscScalar f[])
 static void ShearRate(SLUMP_PW_ARGS, PetscScalar f[])
 {
   PetscReal p;
-  f[0] = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+  f[0] = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p);
 }
 
 static void ShearRateSquared(SLUMP_PW_ARGS, PetscScalar f[])
 {
-  PetscReal p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+  PetscReal p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p);
   f[0] = g * g;
 }
 
@@ -40,12 +40,12 @@ static void KineticEnergyTP(SLUMP_PW_ARGS, PetscScalar f[])
 static void ShearRateTP(SLUMP_PW_ARGS, PetscScalar f[])
 {
   PetscReal p;
-  f[0] = Fraction(Nf, uOff, u, constants) * SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+  f[0] = Fraction(Nf, uOff, u, constants) * SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p);
 }
 
 static void ShearRateSquaredTP(SLUMP_PW_ARGS, PetscScalar f[])
 {
-  PetscReal p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+  PetscReal p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p);
   f[0] = Fraction(Nf, uOff, u, constants) * g * g;
 }
 
@@ -66,7 +66,7 @@ static void PotentialEnergyTP(SLUMP_PW_ARGS, PetscScalar f[])
 /* the ambient fluid's dissipation, (1 - m_v) eta_ambient ||gdot||^2 (m_v: the viscosity's fraction) */
 static void AmbientDissipation(SLUMP_PW_ARGS, PetscScalar f[])
 {
-  PetscReal m, dm, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p);
+  PetscReal m, dm, p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p);
   SlumpPwViscousFraction(u[uOff[Nf - 1]], constants, &m, &dm);
   f[0] = (1.0 - m) * PetscRealPart(constants[SLUMP_C_MIX_ETA]) * g * g;
 }
@@ -257,6 +257,22 @@ PetscErrorCode SlumpProblemComputeErrors(SlumpProblem prob, PetscReal t, Vec X, 
   PetscFunctionBeginUser;
   err[0] = err[1] = norm[0] = norm[1] = -1.0;
   if (!prob->uex) PetscFunctionReturn(0);
+  if (prob->axis >= 0) {
+    /* axisymmetric: the norm of the solid, weighted by r (our cell loop) */
+    PetscCall(SlumpProblemFillLocal(prob, t, X));
+    ex[0] = prob->uex;
+    ex[1] = prob->pex;
+    PetscCall(SlumpAssembleL2Diff(prob, t, prob->locX, ex, prob->exctx, err));
+    /* the exact solution's norm: the distance of zero from it */
+    {
+      PetscReal nz[2];
+      PetscCall(VecZeroEntries(prob->locX));
+      PetscCall(SlumpAssembleL2Diff(prob, t, prob->locX, ex, prob->exctx, nz));
+      norm[0] = nz[0];
+      norm[1] = nz[1];
+    }
+    PetscFunctionReturn(0);
+  }
   PetscCall(SlumpProblemFillDiagVector(prob, t, X, prob->diagX));
   ex[0] = prob->uex;
   ex[1] = prob->pex;

@@ -372,7 +372,8 @@ void SlumpPwWallFrictionF0(PetscInt dim, PetscInt Nf, PetscInt NfAux, const Pets
 {
   WallState w;
   WallEvaluate(dim, Nf, uOff, u, n, constants, &w);
-  for (PetscInt c = 0; c < dim; ++c) f0[c] = w.m * w.L * w.ut[c];
+  const PetscReal wr = SlumpPwBoundaryWeight(x, constants); /* axisymmetric: the radius */
+  for (PetscInt c = 0; c < dim; ++c) f0[c] = wr * w.m * w.L * w.ut[c];
 }
 
 /* The power the friction takes from the flow, f0 . u = m L |u_t|^2 >= 0 (the
@@ -399,7 +400,7 @@ void SlumpPwWallFrictionG0uu(PetscInt dim, PetscInt Nf, PetscInt NfAux, const Pe
       PetscReal v = w.L * w.T[c * dim + e];
       /* Coulomb: d(1/s)/du_e = -ut_e / s^3 (T ut = ut) */
       if (w.law != SLUMP_WALL_NAVIER) v -= w.L * w.ut[c] * w.ut[e] / (w.s * w.s);
-      g0[c * dim + e] = w.m * v;
+      g0[c * dim + e] = SlumpPwBoundaryWeight(x, constants) * w.m * v;
     }
 }
 
@@ -411,7 +412,7 @@ void SlumpPwWallFrictionG0up(PetscInt dim, PetscInt Nf, PetscInt NfAux, const Pe
     return;
   }
   WallEvaluate(dim, Nf, uOff, u, n, constants, &w);
-  for (PetscInt c = 0; c < dim; ++c) g0[c] = w.law == SLUMP_WALL_NAVIER ? 0.0 : w.m * PetscRealPart(constants[SLUMP_C_WALL_COEFF]) * w.dP / w.s * w.ut[c];
+  for (PetscInt c = 0; c < dim; ++c) g0[c] = w.law == SLUMP_WALL_NAVIER ? 0.0 : SlumpPwBoundaryWeight(x, constants) * w.m * PetscRealPart(constants[SLUMP_C_WALL_COEFF]) * w.dP / w.s * w.ut[c];
 }
 
 void SlumpPwWallFrictionG0uphi(PetscInt dim, PetscInt Nf, PetscInt NfAux, const PetscInt uOff[], const PetscInt uOff_x[], const PetscScalar u[], const PetscScalar u_t[], const PetscScalar u_x[], const PetscInt aOff[], const PetscInt aOff_x[], const PetscScalar a[], const PetscScalar a_t[], const PetscScalar a_x[], PetscReal t, PetscReal u_tShift, const PetscReal x[], const PetscReal n[], PetscInt numConstants, const PetscScalar constants[], PetscScalar g0[])
@@ -422,5 +423,5 @@ void SlumpPwWallFrictionG0uphi(PetscInt dim, PetscInt Nf, PetscInt NfAux, const 
     return;
   }
   WallEvaluate(dim, Nf, uOff, u, n, constants, &w);
-  for (PetscInt c = 0; c < dim; ++c) g0[c] = w.dm * w.L * w.ut[c];
+  for (PetscInt c = 0; c < dim; ++c) g0[c] = SlumpPwBoundaryWeight(x, constants) * w.dm * w.L * w.ut[c];
 }

@@ -19,6 +19,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->quadOrder      = 3; /* (3+1)^2 = 16 points: exact to degree 7 */
   p->convForm       = SLUMP_CONVECTION_ADVECTIVE;
   p->extraField     = -1;
+  p->axis           = -1;
   p->yieldedOverride = -1.0;
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
@@ -64,6 +65,22 @@ PetscErrorCode SlumpProblemSetFormulation(SlumpProblem prob, SlumpFormulation f)
 {
   PetscFunctionBeginUser;
   prob->formulation = f;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemSetAxisymmetric(SlumpProblem prob, PetscInt radial)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(!prob->setup, prob->comm, PETSC_ERR_ORDER, "Set the geometry before SlumpProblemSetUp()");
+  PetscCheck(radial < 2, prob->comm, PETSC_ERR_ARG_OUTOFRANGE, "The radial coordinate is 0 (x) or 1 (y); got %d", (int)radial);
+  prob->axis = radial < 0 ? -1 : radial;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetAxisymmetric(SlumpProblem prob, PetscInt *radial)
+{
+  PetscFunctionBeginUser;
+  *radial = prob->axis;
   PetscFunctionReturn(0);
 }
 
@@ -678,6 +695,7 @@ PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem prob)
   prob->constants[SLUMP_C_GX]      = prob->g[0];
   prob->constants[SLUMP_C_GY]      = prob->g[1];
   prob->constants[SLUMP_C_JACMODE] = prob->jacmode;
+  prob->constants[SLUMP_C_AXIS]    = prob->axis + 1;
   for (PetscInt i = 0; i < 4; ++i) prob->constants[SLUMP_C_SCENE + i] = prob->sceneConst[i];
   PetscCall(SlumpRheologyGetConstants(prob->rheo, &n, &prob->constants[SLUMP_C_RHEO]));
   if (prob->extraOps.set_constants) PetscCall(prob->extraOps.set_constants(prob->extraCtx, prob, &prob->constants[SLUMP_C_FIELD]));
@@ -746,6 +764,18 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
   PetscCheck(prob->dm, prob->comm, PETSC_ERR_ORDER, "Set a mesh before SlumpProblemSetUp()");
   if (prob->setup) PetscFunctionReturn(0);
   PetscCall(SlumpRheologyCheck(prob->rheo));
+  if (prob->axis >= 0) {
+    PetscInt dim;
+    PetscCall(DMGetDimension(prob->dm, &dim));
+    PetscCheck(dim == 2 && prob->formulation == SLUMP_FORMULATION_PLANE, prob->comm, PETSC_ERR_SUP, "The axisymmetric geometry needs a 2-D mesh and the plane (velocity-pressure) formulation");
+    PetscCheck(!prob->petscAssembly, prob->comm, PETSC_ERR_USER_INPUT, "-assembly petsc is planar only; the axisymmetric geometry needs -assembly slump");
+    for (PetscInt b = 0; b < prob->nbc; ++b) PetscCheck(prob->bc[b].kind != SLUMP_BC_TRACTION, prob->comm, PETSC_ERR_SUP, "Traction conditions (%s) are planar only; the axisymmetric geometry does not take them", prob->bc[b].label);
+    {
+      PetscReal lo[3], hi[3];
+      PetscCall(DMGetBoundingBox(prob->dm, lo, hi));
+      PetscCheck(lo[prob->axis] >= -1e-12 * (hi[prob->axis] - lo[prob->axis]), prob->comm, PETSC_ERR_USER_INPUT, "The axisymmetric mesh must lie in r = %s >= 0; it reaches %g", prob->axis ? "y" : "x", (double)lo[prob->axis]);
+    }
+  }
   if (prob->twoPhase) {
     PetscReal h;
     PetscCheck(prob->extraField >= 0 && prob->formulation == SLUMP_FORMULATION_PLANE, prob->comm, PETSC_ERR_ORDER, "Two-phase mixing needs a level set (an extra field) and the plane formulation");
@@ -891,6 +921,7 @@ PetscErrorCode SlumpProblemView(SlumpProblem prob, PetscViewer viewer)
   if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; transport by a prescribed velocity (not an unknown)\n", nc));
   else if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; anti-plane P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " out-of-plane velocity\n", nc, prob->velocityDegree, Nu));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "mesh: %" PetscInt_FMT " triangles; P%" PetscInt_FMT "/P%" PetscInt_FMT " unknowns: %" PetscInt_FMT " velocity, %" PetscInt_FMT " pressure\n", nc, prob->velocityDegree, prob->pressureDegree, Nu, N));
+  if (prob->axis >= 0) PetscCall(PetscViewerASCIIPrintf(viewer, "geometry: axisymmetric, r = %s, axis %s = 0 (integrals per radian)\n", prob->axis ? "y" : "x", prob->axis ? "y" : "x"));
   PetscCall(PetscViewerASCIIPrintf(viewer, "effects:"));
   if (!prob->effects) PetscCall(PetscViewerASCIIPrintf(viewer, " none (steady Stokes: no differential unknowns)"));
   for (PetscInt e = 0; e < 4; ++e)

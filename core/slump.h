@@ -69,7 +69,8 @@ enum {
   SLUMP_C_SURF_X0    = SLUMP_C_MIX_RHO + 8, /* free-surface table: first abscissa          */
   SLUMP_C_SURF_DX    = SLUMP_C_MIX_RHO + 9, /* free-surface table: spacing                 */
   SLUMP_C_MIX_FILTER = SLUMP_C_MIX_RHO + 10, /* two-phase: the level set is E tanh(d/E): E (0: a distance) */
-  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 11,
+  SLUMP_C_AXIS       = SLUMP_C_MIX_RHO + 11, /* axisymmetric: 1 + the radial coordinate (0: planar) */
+  SLUMP_C_NUM        = SLUMP_C_MIX_RHO + 12,
   /* the free-surface heights follow the fixed constants:
      constants[SLUMP_C_NUM + i] = h(x0 + i dx), i < constants[SLUMP_C_SURF_N] */
   SLUMP_C_SURF_MAX = 4096
@@ -135,6 +136,18 @@ PETSC_EXTERN PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob
 PETSC_EXTERN PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetMesh(SlumpProblem prob, DM mesh);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetFormulation(SlumpProblem prob, SlumpFormulation f);
+/* Axisymmetric geometry (before SlumpProblemSetUp): the mesh is a meridian
+   half-plane of a solid of revolution, x[radial] = r >= 0 (radial 0 or 1,
+   the other coordinate the axial one z), without swirl. The velocity
+   (u_r, u_z) gains the hoop strain rate u_r / r in ||gdot|| and in the
+   stress (tau_tt = 2 eta u_r / r), div u gains u_r / r, and every integral
+   (residual, Jacobian, diagnostics, fluxes, forces) carries the weight r:
+   volumes, energies, flow rates and forces are per radian (multiply by
+   2 pi for the whole solid). The axis r = 0 needs u_r = 0 (a free-slip
+   condition there). radial < 0: planar (the default). Plane formulation
+   only; not with traction conditions or -assembly petsc. */
+PETSC_EXTERN PetscErrorCode SlumpProblemSetAxisymmetric(SlumpProblem prob, PetscInt radial);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetAxisymmetric(SlumpProblem prob, PetscInt *radial);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetFormulation(SlumpProblem prob, SlumpFormulation *f);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetEffects(SlumpProblem prob, PetscInt effects);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetEffects(SlumpProblem prob, PetscInt *effects);

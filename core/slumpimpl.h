@@ -28,6 +28,7 @@ struct _n_SlumpProblem {
   DM            dmDiag;   /* same fields, no constraints: diagnostics and projections */
   PetscInt      effects;
   SlumpFormulation formulation;
+  PetscInt      axis;     /* axisymmetric: the radial coordinate; -1: planar */
   PetscReal     rho, g[2], sceneConst[4];
   PetscInt      velocityDegree, pressureDegree, quadOrder;
   SlumpRheology rheo;
@@ -106,6 +107,7 @@ PETSC_INTERN PetscErrorCode SlumpAssembleBoundaryIntegral(SlumpProblem, Vec locX
    updated with the correction locdX (SlumpDualFn of the rheology) */
 PETSC_INTERN PetscErrorCode SlumpAssembleDual(SlumpProblem, PetscReal t, Vec locX, Vec locdX, PetscScalar *S, PetscBool *yielded);
 PETSC_INTERN PetscErrorCode SlumpAssemblyGetSizes(SlumpProblem, PetscInt *ncell, PetscInt *nq, PetscInt *dim);
+PETSC_INTERN PetscErrorCode SlumpAssembleL2Diff(SlumpProblem, PetscReal t, Vec locX, SlumpPointFn fn[2], void *ctx, PetscReal err[2]);
 PETSC_INTERN PetscErrorCode SlumpAssembleIntegrals(SlumpProblem, PetscReal t, Vec locX, PetscInt n, PetscPointFunc obj[], PetscReal result[]);
 /* Fill prob->locX with X and the boundary values at t. */
 PETSC_INTERN PetscErrorCode SlumpProblemFillLocal(SlumpProblem, PetscReal t, Vec X);

@@ -47,6 +47,27 @@ static inline PetscReal SlumpPwShearRateAny(PetscInt dim, PetscInt Nf, const Pet
   }
 }
 
+/* The same with the hoop strain 2 u_r / r of the axisymmetric geometry when
+   a kernel is called by PETSc's own loops (projections: dim 2, no hoop
+   entry; our cell loop calls with dim 3 and the entry in u_x). */
+static inline PetscReal SlumpPwShearRateAxi(PetscInt dim, PetscInt Nf, const PetscInt uOff[], const PetscScalar u[], const PetscScalar u_x[], const PetscReal x[], const PetscScalar constants[], PetscReal *p)
+{
+  const PetscInt ax = (PetscInt)PetscRealPart(constants[SLUMP_C_AXIS]) - 1;
+  PetscReal      g  = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, p);
+  if (ax >= 0 && dim == 2 && x[ax] > 0) {
+    const PetscReal h = PetscRealPart(u[uOff[0] + ax]) / x[ax];
+    g = PetscSqrtReal(g * g + 2.0 * h * h);
+  }
+  return g;
+}
+
+/* The boundary kernels' weight (PETSc's face loop): the radius, or 1. */
+static inline PetscReal SlumpPwBoundaryWeight(const PetscReal x[], const PetscScalar constants[])
+{
+  const PetscInt ax = (PetscInt)PetscRealPart(constants[SLUMP_C_AXIS]) - 1;
+  return ax >= 0 ? x[ax] : 1.0;
+}
+
 /* Anti-plane: f1 = eta grad w; g3 = eta I + eta' grad w grad w^T / |grad w|. */
 static inline void SlumpPwF1AntiPlane(PetscInt dim, const PetscScalar w_x[], const PetscReal x[], const PetscScalar prm[], SlumpViscosityKernel k, PetscScalar f1[])
 {
@@ -305,24 +326,24 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
   } \
   static void NAME##_eta(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
-    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p); \
     KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     f[0] = eta; \
   } \
   static void NAME##_shear_rate(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
     PetscReal p; \
-    f[0] = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    f[0] = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p); \
   } \
   static void NAME##_dissipation(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
-    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p); \
     KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     f[0] = eta * g * g; \
   } \
   static void NAME##_yielded(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
-    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p); \
     KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     f[0] = (eta * g > ty) ? 1.0 : 0.0; \
   } \
@@ -348,21 +369,21 @@ static inline void SlumpPwG2Phi(PetscInt dim, const PetscScalar u_x[], PetscScal
   static void NAME##_tp_eta(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
     SLUMP_PW_MIX; \
-    PetscReal eta, d1_, d2_, ty, em, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    PetscReal eta, d1_, d2_, ty, em, p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p); \
     SlumpPwViscosity(KERNEL, &constants[SLUMP_C_RHEO], g, p, x, m_, ea_, &eta, &d1_, &d2_, &ty, &em); \
     f[0] = eta; \
   } \
   static void NAME##_tp_dissipation(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
     SLUMP_PW_MIX; \
-    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p); \
     KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     f[0] = m_ * eta * g * g; \
   } \
   static void NAME##_tp_yielded(SLUMP_PW_ARGS, PetscScalar f[]) \
   { \
     SLUMP_PW_MIX; \
-    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAny(dim, Nf, uOff, u, u_x, &p); \
+    PetscReal eta, d1_, d2_, ty, p, g = SlumpPwShearRateAxi(dim, Nf, uOff, u, u_x, x, constants, &p); \
     KERNEL(&constants[SLUMP_C_RHEO], g, p, x, &eta, &d1_, &d2_, &ty); \
     SlumpPwMaterialFraction(u[uOff[Nf - 1]], constants, &m_, &dm_); /* an area share, like the other averages */ \
     f[0] = (eta * g > ty) ? m_ : 0.0; \

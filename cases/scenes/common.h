@@ -10,6 +10,23 @@ static inline PetscErrorCode SlumpZeroVelocity(PetscInt dim, PetscReal t, const 
   return 0;
 }
 
+/* -geometry axisymmetric: the scene's domain is the meridian half-plane of
+   a solid of revolution with r = x[radial] (SlumpProblemSetAxisymmetric);
+   scenes that offer it call this before building their mesh (scene.c
+   refuses the option for the others). */
+static inline PetscErrorCode SlumpSceneGeometry(SlumpProblem prob, MPI_Comm comm, PetscInt radial, PetscBool *axi)
+{
+  const char *geoms[] = {"planar", "axisymmetric"};
+  PetscInt    g       = 0;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, NULL, "Scene geometry", "");
+  PetscCall(PetscOptionsEList("-geometry", "planar (2-D) or axisymmetric (r-z meridian plane, integrals per radian)", "SlumpProblemSetAxisymmetric", geoms, 2, geoms[0], &g, NULL));
+  PetscOptionsEnd();
+  *axi = g == 1 ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(SlumpProblemSetAxisymmetric(prob, *axi ? radial : -1));
+  PetscFunctionReturn(0);
+}
+
 /* The scene's mesh (-mesh_file or the rectangle [lower, upper]) handed to the problem. */
 static inline PetscErrorCode SlumpSceneSetMesh(SlumpScene scene, SlumpProblem prob, MPI_Comm comm, const PetscReal lower[2], const PetscReal upper[2])
 {
