@@ -189,25 +189,36 @@ PetscErrorCode SlumpLevelSetComputeVolume(SlumpLevelSet ls, PetscReal t, Vec X, 
 {
   SlumpLSNodes *nd;
   PetscReal    *f, V = 0.0;
+  PetscInt      ax;
   PetscFunctionBeginUser;
+  /* axisymmetric: the volume per radian, int r dA (the area times the
+     centroid's radius, triangle by triangle) */
+  PetscCall(SlumpProblemGetAxisymmetric(ls->prob, &ax));
   PetscCall(GetNodal(ls, t, X, PETSC_FALSE, &nd, &f));
   for (PetscInt k = 0; k < nd->ntri; ++k) {
     const PetscInt *v = &nd->tri[3 * k];
     const PetscReal A = TriArea(&nd->xy[2 * v[0]], &nd->xy[2 * v[1]], &nd->xy[2 * v[2]]);
+    const PetscReal rc = ax >= 0 ? (nd->xy[2 * v[0] + ax] + nd->xy[2 * v[1] + ax] + nd->xy[2 * v[2] + ax]) / 3.0 : 1.0;
     PetscInt        nneg = 0, odd = -1;
     for (PetscInt j = 0; j < 3; ++j) nneg += f[v[j]] < 0 ? 1 : 0;
     if (nneg == 0) continue;
     if (nneg == 3) {
-      V += A;
+      V += A * rc;
       continue;
     }
     /* the vertex alone on its side */
     for (PetscInt j = 0; j < 3; ++j)
       if ((nneg == 1) == (f[v[j]] < 0)) odd = j;
     {
-      const PetscReal fi = f[v[odd]], fj = f[v[(odd + 1) % 3]], fk = f[v[(odd + 2) % 3]];
+      const PetscInt  i = v[odd], j = v[(odd + 1) % 3], kk = v[(odd + 2) % 3];
+      const PetscReal fi = f[i], fj = f[j], fk = f[kk];
       const PetscReal frac = (fi * fi) / ((fi - fj) * (fi - fk)); /* the odd vertex's corner */
-      V += nneg == 1 ? frac * A : (1.0 - frac) * A;
+      PetscReal       rcorner = 1.0;
+      if (ax >= 0) { /* the corner triangle: the odd vertex and the two crossings */
+        const PetscReal ri = nd->xy[2 * i + ax], sj = fi / (fi - fj), sk = fi / (fi - fk);
+        rcorner = (3.0 * ri + sj * (nd->xy[2 * j + ax] - ri) + sk * (nd->xy[2 * kk + ax] - ri)) / 3.0;
+      }
+      V += nneg == 1 ? frac * A * rcorner : A * rc - frac * A * rcorner;
     }
   }
   PetscCall(PetscFree(f));

@@ -72,7 +72,8 @@ PETSC_EXTERN PetscErrorCode SlumpLevelSetSetLog(SlumpLevelSet ls, const char pat
    called after every accepted step, and by the driver at the initial time. */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetRecordVolume(SlumpLevelSet ls, PetscReal t, Vec X);
 
-/* Material volume (area in 2D) of {phi < 0}, exact for the piecewise linear
+/* Material volume (area in 2D; int r dA, the volume per radian, in the
+   axisymmetric geometry) of {phi < 0}, exact for the piecewise linear
    interpolant of the nodal values (collective). */
 PETSC_EXTERN PetscErrorCode SlumpLevelSetComputeVolume(SlumpLevelSet ls, PetscReal t, Vec X, PetscReal *volume);
 /* Bounding box {xmin, xmax, ymin, ymax} of the material {phi < 0} of the

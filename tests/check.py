@@ -1039,6 +1039,10 @@ INPUT_CASES = [
     ("exact_vs_integrator", ["-scene", "poiseuille_cessation", "-method", "exact", "-time_integrator", "ida", "-time_dt", "1e-3"], "-method exact"),
     ("exact_checkpoint", ["-scene", "poiseuille_cessation", "-method", "exact", "-time_dt", "1e-3", "-checkpoint_every", "5"], "-method exact"),
     ("exact_tol", ["-scene", "poiseuille", "-method", "exact", "-alg2_tol", "2"], "-alg2_tol"),
+    ("axi_scene", ["-scene", "cavity", "-geometry", "axisymmetric"], "-geometry"),
+    ("axi_value", ["-scene", "poiseuille", "-geometry", "axi"], "-geometry"),
+    ("axi_exact", ["-scene", "poiseuille", "-geometry", "axisymmetric", "-method", "exact"], "-method exact"),
+    ("axi_assembly", ["-scene", "poiseuille", "-geometry", "axisymmetric", "-assembly", "petsc"], "-assembly"),
     ("cylinder_cutoff", ["-scene", "cylinder", "-cylinder_cutoff", "2.5"], "-cylinder_cutoff"),
     ("cavity_grid", ["-scene", "cavity", "-cavity_grid", "5"], "-cavity_grid"),
 ]
@@ -2172,6 +2176,103 @@ def compare_ranks(name, scene, opts, keys, tol):
         print("%-26s 1 rank %.12e  2 ranks %.12e  rel diff %.1e" % (k, s1[k], s2[k], rel))
         if not rel <= tol:
             fail("%s: 1 and 2 ranks expected equal to %g relative, got %g" % (k, tol, rel))
+
+
+def test_axisymmetric_mms():
+    """The axisymmetric operator with every hoop term active: a manufactured
+    axisymmetric Stokes flow (mms_stokes -geometry axisymmetric, stream
+    function r^2 cos(pi r) sin(pi z), u_r/r != 0) on 8, 16, 32 cells a side.
+    Taylor-Hood orders in the r-weighted L2 norm: velocity >= 2.9 (measured
+    3.01, 3.00), pressure >= 1.9 (measured 2.64, 2.30)."""
+    eu, ep, ou, op, _ = mms_orders("axisymmetric_mms", ["-geometry", "axisymmetric"])
+    print("velocity L2 errors %s orders %s; pressure L2 errors %s orders %s" % (eu, ou, ep, op))
+    if min(ou) < 2.9 or min(op) < 1.9:
+        fail("axisymmetric MMS: orders expected >= 2.9 (velocity) and >= 1.9 (pressure), got %s and %s" % (ou, op))
+
+
+def test_axisymmetric_pipe():
+    """The axisymmetric geometry (-geometry axisymmetric: hoop strain u_r/r,
+    weight r in every integral) on the pipe of radius 1 (poiseuille, r = y).
+    (1) Newtonian: the parabola G (R^2 - r^2)/(4 eta) lies in P2, so the
+    solution is exact to 1e-10 relative on 8 cells across, and the flow rate
+    per radian int u r dr is R^4 G/(16 eta) = 1/16 to 1e-10.
+    (2) Bingham (Papanastasiou m = 1e5), plug radius r0 = 2 tau0/G = 0.3
+    (Buckingham-Reiner): relative L2 errors (r-weighted) on 8, 16, 32 cells
+    across fall at an observed order >= 2 from 8 to 16 (measured 2.6) and to
+    <= 1e-4 on 32 (measured 3.6e-5, where m's own error is near); the flow
+    rate within 1e-4 of Buckingham-Reiner's (measured 8e-6); the plug radius
+    from the yielded volume within one cell of 0.3.
+    (3) Herschel-Bulkley n = 0.5, 32 cells: relative L2 error <= 1e-3 and the
+    flow rate within 1e-3 of the exact profile's."""
+    w = work("axisymmetric_pipe")
+    d = os.path.join(w, "newtonian")
+    run("poiseuille", ["-geometry", "axisymmetric", "-rheology_type", "newtonian", "-mesh_ny", "8", "-output_fields", "0"], d)
+    s = summary(d)
+    rel, q = s["err_u_l2"] / s["norm_u_l2"], s["flow_rate"]
+    print("Newtonian pipe: relative L2 error %.2e, flow rate %.15f (exact 1/16)" % (rel, q))
+    if not rel <= 1e-10 or not abs(q - 1.0 / 16) <= 1e-10 / 16:
+        fail("Newtonian pipe expected exact to 1e-10: error %g, flow rate %.15g" % (rel, q))
+    errs = []
+    for n in (8, 16, 32):
+        d = os.path.join(w, "bingham%d" % n)
+        run("poiseuille", ["-geometry", "axisymmetric", "-rheology_papanastasiou_m", "1e5", "-mesh_ny", str(n), "-output_fields", "0"], d)
+        s = summary(d)
+        e = s["err_u_l2"] / s["norm_u_l2"]
+        errs.append(e)
+        dq = abs(s["flow_rate"] / s["flow_rate_exact"] - 1)
+        print("Bingham pipe, %2d cells: relative L2 error %.3e, flow rate %.7f (exact %.7f, rel %.1e), plug radius %.4f (exact %.4f)"
+              % (n, e, s["flow_rate"], s["flow_rate_exact"], dq, s["plug_radius"], s["plug_radius_exact"]))
+        if n == 32:
+            if not e <= 1e-4:
+                fail("Bingham pipe on 32 cells: relative error expected <= 1e-4, got %g" % e)
+            if not dq <= 1e-4:
+                fail("Bingham pipe flow rate expected within 1e-4 of Buckingham-Reiner, got %g" % dq)
+        if not abs(s["plug_radius"] - s["plug_radius_exact"]) <= 1.0 / n:
+            fail("plug radius on %d cells expected within one cell of %g, got %g" % (n, s["plug_radius_exact"], s["plug_radius"]))
+    o = order(errs[0], errs[1])
+    print("observed order 8 -> 16: %.2f" % o)
+    if not o >= 2.0:
+        fail("Bingham pipe: observed order expected >= 2, got %g" % o)
+    d = os.path.join(w, "hb")
+    run("poiseuille", ["-geometry", "axisymmetric", "-rheology_type", "hb_papanastasiou", "-rheology_hb_n", "0.5", "-rheology_papanastasiou_m", "1e6", "-steady_continuation_start", "1e2", "-mesh_ny", "32", "-output_fields", "0"], d)
+    s = summary(d)
+    e, dq = s["err_u_l2"] / s["norm_u_l2"], abs(s["flow_rate"] / s["flow_rate_exact"] - 1)
+    print("Herschel-Bulkley n = 0.5 pipe: relative L2 error %.3e, flow rate rel %.1e" % (e, dq))
+    if not e <= 1e-3 or not dq <= 1e-3:
+        fail("Herschel-Bulkley pipe: error %g and flow-rate difference %g expected <= 1e-3" % (e, dq))
+
+
+def test_axisymmetric_decay():
+    """The decay of a Newtonian pipe flow (decay -geometry axisymmetric):
+    u = J0(j1 r) exp(-j1^2 nu t), j1 = 2.40483, is an exact solution of the
+    axisymmetric equations. Fixed-step BDF2 at dt 4e-3, 2e-3, 1e-3: observed
+    order >= 1.9 (r-weighted relative L2 error at t = 0.1; measured 2.00),
+    and adaptive IDA at rtol 1e-4 within 10 x rtol."""
+    w = work("axisymmetric_decay")
+    err = []
+    for dt in (4e-3, 2e-3, 1e-3):
+        d = os.path.join(w, "bdf2_%g" % dt)
+        run("decay", ["-geometry", "axisymmetric", "-time_integrator", "bdf2", "-time_dt", str(dt), "-output_fields", "0"], d)
+        s = summary(d)
+        err.append(s["err_u_l2"] / s["norm_u_l2"])
+    o = [order(err[i], err[i + 1]) for i in range(2)]
+    print("pipe decay, BDF2: relative errors %s, orders %s" % (err, o))
+    if min(o) < 1.9:
+        fail("pipe decay: BDF2 order expected >= 1.9, got %s" % o)
+    d = os.path.join(w, "ida")
+    run("decay", ["-geometry", "axisymmetric", "-time_rtol", "1e-4", "-time_atol", "1e-7", "-output_fields", "0"], d)
+    s = summary(d)
+    e = s["err_u_l2"] / s["norm_u_l2"]
+    print("pipe decay, IDA rtol 1e-4: relative error %.3e (%.1f x rtol)" % (e, e / 1e-4))
+    if not e <= 1e-3:
+        fail("pipe decay, IDA: error expected <= 10 x rtol, got %g" % e)
+
+
+def test_axisymmetric_parallel():
+    """The Bingham pipe on 1 and 2 ranks: the same flow rate, energy, shear
+    rates and error to 1e-8 relative."""
+    compare_ranks("axisymmetric_parallel", "poiseuille", ["-geometry", "axisymmetric", "-rheology_papanastasiou_m", "1e4", "-output_fields", "0", "-newton_rtol", "1e-12"],
+                  ("flow_rate", "kinetic_energy", "mean_shear_rate", "max_shear_rate", "err_u_l2", "plug_radius"), 1e-8)
 
 
 def test_exact_steady():

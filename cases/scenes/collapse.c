@@ -49,6 +49,7 @@ typedef struct {
   PetscBool surface_feed; /* hand the current free-surface height to the kernels (lithostatic yield) */
   PetscBool quasistatic;  /* no inertia: velocity and pressure algebraic, only phi differential */
   PetscReal supg_speed;   /* speed floor of the level set's SUPG (0: none) */
+  PetscBool axi;          /* -geometry axisymmetric: a cylindrical column about x = 0 */
 } ColumnCtx;
 
 /* signed distance to the column [0, ri] x [0, hi] seen from the box: the
@@ -123,6 +124,9 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
   if (c->runout_fit > 0) {
     PetscCall(SlumpSceneAddResult(scene, "runout_over_ri", (box[1] - c->ri) / c->ri));
     PetscCall(SlumpSceneAddResult(scene, "runout_fit_thesis", c->runout_fit));
+    /* axisymmetric experiments (Lube et al. 2004; Lajeunesse et al. 2004
+       find the same regimes): 1.24 a (a < 1.7), 1.6 a^(1/2) */
+    if (c->axi) PetscCall(SlumpSceneAddResult(scene, "runout_fit_lube2004", c->hi / c->ri < 1.7 ? 1.24 * c->hi / c->ri : 1.6 * PetscSqrtReal(c->hi / c->ri)));
   }
   PetscFunctionReturn(0);
 }
@@ -143,6 +147,8 @@ static PetscErrorCode ColumnSetUp(SlumpScene scene, SlumpProblem prob, MPI_Comm 
   PetscCall(PetscOptionsReal("-floor_friction", "Floor friction coefficient: beta (navier) or mu_w (coulomb)", "", c->fcoeff, &c->fcoeff, NULL));
   PetscCall(PetscOptionsReal("-floor_friction_delta", "Velocity scale delta of the regularised Coulomb floor", "", c->freg, &c->freg, NULL));
   PetscOptionsEnd();
+  /* axisymmetric: the column is a cylinder about the left wall x = 0 (r = x) */
+  PetscCall(SlumpSceneGeometry(prob, comm, 0, &c->axi));
   c->floor = (FloorKind)fl;
   PetscCheck(c->fcoeff >= 0, comm, PETSC_ERR_USER_INPUT, "-floor_friction must be >= 0; got %g", (double)c->fcoeff);
   PetscCheck(c->floor != FLOOR_COULOMB || c->freg > 0, comm, PETSC_ERR_USER_INPUT, "-floor_friction_delta must be positive for -floor coulomb; got %g", (double)c->freg);
@@ -306,6 +312,16 @@ PetscErrorCode SlumpSceneCreate_BinghamDamBreak(SlumpScene scene, SlumpProblem p
    effective aspect ratio a_eff (a, or (h_i + h_r)/r_i for a chute):
    margin 1.5 for a collapse, 3 for a chute (in 2-D a column dropped from
    h_r = h_i at a = 1 reached the end of a box of margin 1.5). */
+/* The thesis' fits of the run-out (r_f - r_i)/r_i: 2-D (sec. 4.3.1, with
+   Lagree et al.'s parameters) 1.72 a^0.97 (a <= 7), 2.96 a^0.69; 3-D
+   (eq. 4.20, with Jop et al.'s mu_s = 0.38, I0 = 0.279) 1.2 a (a < 2.7),
+   1.93 a^0.54. */
+static PetscReal RunoutFit(PetscBool axi, PetscReal a)
+{
+  if (axi) return a < 2.7 ? 1.2 * a : 1.93 * PetscPowReal(a, 0.54);
+  return a <= 7 ? 1.72 * PetscPowReal(a, 0.97) : 2.96 * PetscPowReal(a, 0.69);
+}
+
 static PetscErrorCode MuIColumn(SlumpScene scene, SlumpProblem prob, MPI_Comm comm, ColumnCtx *c, PetscReal a, PetscReal grains, PetscReal h, PetscReal a_eff, PetscReal margin)
 {
   SlumpRheology rheo;
@@ -322,10 +338,11 @@ static PetscErrorCode MuIColumn(SlumpScene scene, SlumpProblem prob, MPI_Comm co
   c->hi         = 1.0;
   c->ri         = 1.0 / a;
   c->g          = 1.0;
-  c->runout_fit = a <= 7 ? 1.72 * PetscPowReal(a, 0.97) : 2.96 * PetscPowReal(a, 0.69);
+  PetscCall(SlumpSceneGeometry(prob, comm, 0, &c->axi));
   {
-    const PetscReal fit_eff = a_eff <= 7 ? 1.72 * PetscPowReal(a_eff, 0.97) : 2.96 * PetscPowReal(a_eff, 0.69);
-    c->L = PetscCeilReal((c->ri * (1.0 + margin * fit_eff) + 0.5) / h) * h;
+    const PetscReal fit_eff = RunoutFit(c->axi, a_eff);
+    c->runout_fit           = RunoutFit(c->axi, a);
+    c->L                    = PetscCeilReal((c->ri * (1.0 + margin * fit_eff) + 0.5) / h) * h;
   }
   c->H      = PetscCeilReal(1.25 / h) * h;
   c->floor  = FLOOR_COULOMB;
