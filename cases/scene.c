@@ -98,7 +98,7 @@ PetscErrorCode SlumpSceneCreate(MPI_Comm comm, const char name[], SlumpProblem p
         PetscCall(PetscOptionsGetString(NULL, NULL, "-geometry", geom, sizeof(geom), &set));
         PetscCall(SlumpProblemGetAxisymmetric(prob, &axis));
         PetscCall(PetscStrcmp(geom, "planar", &planar));
-        PetscCheck(!set || axis >= 0 || planar, comm, PETSC_ERR_USER_INPUT, "-geometry %s is not available for the %s scene; the axisymmetric geometry is offered by poiseuille, decay and the column scenes (dam_break, bingham_dam_break, column_collapse, column_chute, chupin_column)", geom, name);
+        PetscCheck(!set || axis >= 0 || planar, comm, PETSC_ERR_USER_INPUT, "-geometry %s is not available for the %s scene; the axisymmetric geometry is offered by poiseuille, poiseuille_cessation, decay, mms_stokes and the column scenes (dam_break, bingham_dam_break, column_collapse, column_chute, chupin_column)", geom, name);
       }
       PetscFunctionReturn(0);
     }

@@ -222,6 +222,19 @@ static inline PetscReal RadialWeight(SlumpAssembly a, const CellData *cd, PetscI
   return a->axis >= 0 ? cd->x[q * 3 + a->axis] : 1.0;
 }
 
+/* The radius at quadrature point q of local cell c (axisymmetric), from the
+   cached geometry; 1 in the plane. */
+static inline PetscReal QuadRadius(SlumpAssembly a, PetscInt c, PetscInt q)
+{
+  const PetscInt   dim = a->dim, ax = a->axis;
+  const PetscReal *g = &a->geom[c * GEOMSIZE(dim)], *v0 = g, *J = g + dim;
+  PetscReal        r;
+  if (ax < 0) return 1.0;
+  r = v0[ax];
+  for (PetscInt e = 0; e < dim; ++e) r += J[ax * dim + e] * (a->xi[q * dim + e] + 1.0);
+  return r;
+}
+
 PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, Vec locF)
 {
   SlumpAssembly      a = prob->assembly;
@@ -673,16 +686,17 @@ PetscErrorCode SlumpProblemGetFieldClosure(SlumpProblem prob, PetscInt field, Pe
 /* ---- quadrature-point fields (the exact method's stress and strain rate) ----
    Layout: value k of quadrature point q of local cell c at
    ((c * nq + q) * ns + k). ns = dim * dim for the plane formulation (the
-   tensor, row-major) and dim for the anti-plane one (a vector). */
+   tensor, row-major), 9 in the axisymmetric geometry (the 3 x 3 tensor
+   with its hoop entry (2,2)), and dim for the anti-plane one (a vector).
+   The weights carry the radius in the axisymmetric geometry. */
 
 PetscErrorCode SlumpProblemGetQuadratureLayout(SlumpProblem prob, PetscInt *npoints, PetscInt *ns)
 {
   SlumpAssembly a = prob->assembly;
   PetscFunctionBeginUser;
   PetscCheck(a, prob->comm, PETSC_ERR_ORDER, "Call SlumpProblemSetUp() first");
-  PetscCheck(a->axis < 0, prob->comm, PETSC_ERR_SUP, "Quadrature-point fields (the exact method) are planar only");
   if (npoints) *npoints = a->ncell * a->Nq;
-  if (ns) *ns = a->Nc[0] == 1 ? a->dim : a->dim * a->dim;
+  if (ns) *ns = a->Nc[0] == 1 ? a->dim : a->kdim * a->kdim;
   PetscFunctionReturn(0);
 }
 
@@ -694,7 +708,7 @@ PetscErrorCode SlumpProblemGetQuadratureWeights(SlumpProblem prob, PetscReal w[]
   PetscCheck(a, prob->comm, PETSC_ERR_ORDER, "Call SlumpProblemSetUp() first");
   for (PetscInt c = 0; c < a->ncell; ++c) {
     const PetscReal detJ = a->geom[c * GEOMSIZE(a->dim) + a->dim + 2 * a->dim * a->dim];
-    for (PetscInt q = 0; q < a->Nq; ++q) w[c * a->Nq + q] = a->w[q] * detJ;
+    for (PetscInt q = 0; q < a->Nq; ++q) w[c * a->Nq + q] = a->w[q] * detJ * QuadRadius(a, c, q);
   }
   PetscFunctionReturn(0);
 }
@@ -704,7 +718,7 @@ PetscErrorCode SlumpProblemGetQuadratureWeights(SlumpProblem prob, PetscReal w[]
 PetscErrorCode SlumpProblemComputeQuadratureStrainRate(SlumpProblem prob, PetscReal t, Vec X, PetscScalar g[])
 {
   SlumpAssembly      a = prob->assembly;
-  const PetscInt     dim = a->dim, nc = a->Nc[0], ns = nc == 1 ? dim : dim * dim, N = a->NbTot;
+  const PetscInt     dim = a->dim, kd = a->kdim, nc = a->Nc[0], ns = nc == 1 ? dim : kd * kd, N = a->NbTot;
   const PetscScalar *xa;
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemFillLocal(prob, t, X));
@@ -714,20 +728,22 @@ PetscErrorCode SlumpProblemComputeQuadratureStrainRate(SlumpProblem prob, PetscR
     const PetscInt  *li = &a->lidx[c * N];
     for (PetscInt q = 0; q < a->Nq; ++q) {
       PetscScalar ux[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0}, *gq = &g[(c * a->Nq + q) * ns];
+      const PetscInt st = nc == 1 ? dim : kd; /* row stride of ux */
       for (PetscInt b = 0; b < a->Nb[0]; ++b) {
         const PetscInt   B = a->off[0] + b, cc = a->comp[B];
         const PetscReal *rg = &a->dphi[(q * MAXNB + B) * 3];
         for (PetscInt d = 0; d < dim; ++d) {
           PetscReal G = 0.0;
           for (PetscInt e = 0; e < dim; ++e) G += rg[e] * invJ[e * dim + d];
-          ux[cc * dim + d] += G * xa[li[B]];
+          ux[cc * st + d] += G * xa[li[B]];
         }
+        if (a->axis >= 0 && cc == a->axis) ux[8] += a->phi[q * MAXNB + B] * xa[li[B]] / QuadRadius(a, c, q); /* u_r / r */
       }
       if (nc == 1)
         for (PetscInt d = 0; d < dim; ++d) gq[d] = ux[d];
       else
-        for (PetscInt i = 0; i < dim; ++i)
-          for (PetscInt j = 0; j < dim; ++j) gq[i * dim + j] = ux[i * dim + j] + ux[j * dim + i];
+        for (PetscInt i = 0; i < kd; ++i)
+          for (PetscInt j = 0; j < kd; ++j) gq[i * kd + j] = ux[i * kd + j] + ux[j * kd + i];
     }
   }
   PetscCall(VecRestoreArrayRead(prob->locX, &xa));
@@ -739,7 +755,7 @@ PetscErrorCode SlumpProblemComputeQuadratureStrainRate(SlumpProblem prob, PetscR
 PetscErrorCode SlumpProblemAddQuadratureFlux(SlumpProblem prob, const PetscScalar T[], Vec F)
 {
   SlumpAssembly  a = prob->assembly;
-  const PetscInt dim = a->dim, nc = a->Nc[0], ns = nc == 1 ? dim : dim * dim, N = a->NbTot;
+  const PetscInt dim = a->dim, kd = a->kdim, nc = a->Nc[0], ns = nc == 1 ? dim : kd * kd, N = a->NbTot;
   PetscScalar   *fa;
   PetscFunctionBeginUser;
   PetscCall(VecZeroEntries(prob->locF));
@@ -749,7 +765,7 @@ PetscErrorCode SlumpProblemAddQuadratureFlux(SlumpProblem prob, const PetscScala
     const PetscInt  *li = &a->lidx[c * N];
     for (PetscInt q = 0; q < a->Nq; ++q) {
       const PetscScalar *Tq = &T[(c * a->Nq + q) * ns];
-      const PetscReal    wq = a->w[q] * detJ;
+      const PetscReal    rq = QuadRadius(a, c, q), wq = a->w[q] * detJ * rq;
       for (PetscInt b = 0; b < a->Nb[0]; ++b) {
         const PetscInt   B = a->off[0] + b, cc = a->comp[B];
         const PetscReal *rg = &a->dphi[(q * MAXNB + B) * 3];
@@ -757,8 +773,9 @@ PetscErrorCode SlumpProblemAddQuadratureFlux(SlumpProblem prob, const PetscScala
         for (PetscInt d = 0; d < dim; ++d) {
           PetscReal G = 0.0;
           for (PetscInt e = 0; e < dim; ++e) G += rg[e] * invJ[e * dim + d];
-          v += (nc == 1 ? Tq[d] : Tq[cc * dim + d]) * G;
+          v += (nc == 1 ? Tq[d] : Tq[cc * kd + d]) * G;
         }
+        if (a->axis >= 0 && cc == a->axis) v += Tq[8] * a->phi[q * MAXNB + B] / rq; /* T_tt v_r / r */
         fa[li[B]] += wq * v;
       }
     }
@@ -985,7 +1002,6 @@ PetscErrorCode SlumpProblemComputeBoundaryForce(SlumpProblem prob, PetscReal t, 
   CellData          *cd;
   PetscFunctionBeginUser;
   PetscCheck(a->Nc[0] == dim && comp >= 0 && comp < dim, prob->comm, PETSC_ERR_ARG_WRONG, "The boundary force needs the plane formulation and a component below %d", (int)dim);
-  PetscCheck(!plastic || a->axis < 0, prob->comm, PETSC_ERR_SUP, "The boundary force with a plastic stress is planar only");
   {
     CutoffProjection cp = {cutoff, ctx, comp};
     PetscErrorCode (*funcs[SLUMP_MAX_FIELDS])(PetscInt, PetscReal, const PetscReal[], PetscInt, PetscScalar[], void *);
@@ -1020,8 +1036,8 @@ PetscErrorCode SlumpProblemComputeBoundaryForce(SlumpProblem prob, PetscReal t, 
       if (s == 0.0) continue;
       if (f0) f0(kd, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r0);
       if (f1) f1(kd, a->Nf, 0, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], NULL, NULL, NULL, NULL, NULL, t, &cd->x[q * 3], nc, constants, r1);
-      if (plastic)
-        for (PetscInt d = 0; d < dim; ++d) r1[comp * dim + d] += prob->plasticStress[(c * a->Nq + q) * dim * dim + comp * dim + d];
+      if (plastic) /* the whole tensor: the contraction below uses the rows of comp (and the hoop entry) */
+        for (PetscInt i = 0; i < kd * kd; ++i) r1[i] += prob->plasticStress[(c * a->Nq + q) * kd * kd + i];
       {
         /* phi_h e_comp's value and gradient (with its hoop entry, axisymmetric) */
         PetscReal val = PetscRealPart(r0[comp] * v[comp]);
@@ -1044,7 +1060,7 @@ PetscErrorCode SlumpProblemSetPlasticStress(SlumpProblem prob, PetscInt n, const
   PetscFunctionBeginUser;
   PetscCall(PetscFree(prob->plasticStress));
   if (!S) PetscFunctionReturn(0);
-  PetscCheck(n == prob->assembly->ncell * prob->assembly->Nq * prob->assembly->dim * prob->assembly->dim, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "The plastic stress has %d values; this rank needs %d (plane formulation)", (int)n, (int)(prob->assembly->ncell * prob->assembly->Nq * prob->assembly->dim * prob->assembly->dim));
+  PetscCheck(n == prob->assembly->ncell * prob->assembly->Nq * prob->assembly->kdim * prob->assembly->kdim, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "The plastic stress has %d values; this rank needs %d (plane formulation)", (int)n, (int)(prob->assembly->ncell * prob->assembly->Nq * prob->assembly->kdim * prob->assembly->kdim));
   PetscCall(PetscMalloc1(PetscMax(n, 1), &prob->plasticStress));
   PetscCall(PetscArraycpy(prob->plasticStress, S, n));
   PetscFunctionReturn(0);

@@ -1041,7 +1041,6 @@ INPUT_CASES = [
     ("exact_tol", ["-scene", "poiseuille", "-method", "exact", "-alg2_tol", "2"], "-alg2_tol"),
     ("axi_scene", ["-scene", "cavity", "-geometry", "axisymmetric"], "-geometry"),
     ("axi_value", ["-scene", "poiseuille", "-geometry", "axi"], "-geometry"),
-    ("axi_exact", ["-scene", "poiseuille", "-geometry", "axisymmetric", "-method", "exact"], "-method exact"),
     ("axi_assembly", ["-scene", "poiseuille", "-geometry", "axisymmetric", "-assembly", "petsc"], "-assembly"),
     ("cylinder_cutoff", ["-scene", "cylinder", "-cylinder_cutoff", "2.5"], "-cylinder_cutoff"),
     ("cavity_grid", ["-scene", "cavity", "-cavity_grid", "5"], "-cavity_grid"),
@@ -2202,7 +2201,10 @@ def test_axisymmetric_pipe():
     <= 1e-4 on 32 (measured 3.6e-5, where m's own error is near); the flow
     rate within 1e-4 of Buckingham-Reiner's (measured 8e-6); the plug radius
     from the yielded volume within one cell of 0.3.
-    (3) Herschel-Bulkley n = 0.5, 32 cells: relative L2 error <= 1e-3 and the
+    (3) The exact method (-method exact, ALG2 with the hoop entry of the
+    strain rate at the quadrature points), 32 cells: relative L2 error and
+    flow rate within 1e-4 (measured 3.2e-5 and 1.1e-5).
+    (4) Herschel-Bulkley n = 0.5, 32 cells: relative L2 error <= 1e-3 and the
     flow rate within 1e-3 of the exact profile's."""
     w = work("axisymmetric_pipe")
     d = os.path.join(w, "newtonian")
@@ -2233,6 +2235,13 @@ def test_axisymmetric_pipe():
     print("observed order 8 -> 16: %.2f" % o)
     if not o >= 2.0:
         fail("Bingham pipe: observed order expected >= 2, got %g" % o)
+    d = os.path.join(w, "exact")
+    run("poiseuille", ["-geometry", "axisymmetric", "-method", "exact", "-mesh_ny", "32", "-output_fields", "0"], d)
+    s = summary(d)
+    e, dq = s["err_u_l2"] / s["norm_u_l2"], abs(s["flow_rate"] / s["flow_rate_exact"] - 1)
+    print("Bingham pipe, exact method (ALG2), 32 cells: relative L2 error %.3e, flow rate rel %.1e" % (e, dq))
+    if not e <= 1e-4 or not dq <= 1e-4:
+        fail("exact method on the pipe: error %g and flow-rate difference %g expected <= 1e-4" % (e, dq))
     d = os.path.join(w, "hb")
     run("poiseuille", ["-geometry", "axisymmetric", "-rheology_type", "hb_papanastasiou", "-rheology_hb_n", "0.5", "-rheology_papanastasiou_m", "1e6", "-steady_continuation_start", "1e2", "-mesh_ny", "32", "-output_fields", "0"], d)
     s = summary(d)
@@ -2266,6 +2275,37 @@ def test_axisymmetric_decay():
     print("pipe decay, IDA rtol 1e-4: relative error %.3e (%.1f x rtol)" % (e, e / 1e-4))
     if not e <= 1e-3:
         fail("pipe decay, IDA: error expected <= 10 x rtol, got %g" % e)
+
+
+def test_axisymmetric_cessation():
+    """Bingham pipe cessation (poiseuille_cessation -geometry axisymmetric,
+    Bn = r0/R = 0.5, 16 cells across the radius): the exact method (ALG2 per
+    backward-Euler step) brackets the finite stopping time; the brackets at
+    dt 1e-3 and 5e-4 overlap and are one step wide (measured (0.069, 0.070]
+    and (0.069, 0.0695]). The regularised run (Papanastasiou m = 1e4, IDA)
+    crosses the arrest threshold (mean shear rate 1e-3) just before the
+    flow stops: between 0.97 x the exact lower bound and the exact upper
+    bound (measured 0.06841, 1 % before 0.069)."""
+    w = work("axisymmetric_cessation")
+    br = {}
+    for dt in (1e-3, 5e-4):
+        d = os.path.join(w, "exact_%g" % dt)
+        run("poiseuille_cessation", ["-geometry", "axisymmetric", "-method", "exact", "-time_dt", str(dt), "-output_fields", "0"], d)
+        s = summary(d)
+        br[dt] = (s["t_stop_lower"], s["t_stop_upper"])
+        print("exact, dt %g: stop in (%.5f, %.5f]" % (dt, br[dt][0], br[dt][1]))
+        if not abs(br[dt][1] - br[dt][0] - dt) <= 1e-9:
+            fail("dt %g: the stopping bracket is not one step wide: %s" % (dt, br[dt]))
+    if not (br[5e-4][0] < br[1e-3][1] and br[1e-3][0] < br[5e-4][1]):
+        fail("the stopping brackets at dt 1e-3 and 5e-4 do not overlap: %s, %s" % (br[1e-3], br[5e-4]))
+    d = os.path.join(w, "regularised")
+    run("poiseuille_cessation", ["-geometry", "axisymmetric", "-output_fields", "0"], d)
+    s = summary(d)
+    ta = s["t_arrest"]
+    lo, hi = br[5e-4]
+    print("regularised m = 1e4: arrest (mean shear rate < 1e-3) at %.5f; exact stop in (%.5f, %.5f]" % (ta, lo, hi))
+    if not 0.97 * lo <= ta <= hi:
+        fail("regularised arrest %g outside [0.97 x %g, %g]" % (ta, lo, hi))
 
 
 def test_axisymmetric_parallel():

@@ -105,11 +105,6 @@ PetscErrorCode SlumpExactCheckProblem(SlumpProblem prob)
   PetscCall(SlumpProblemHasWallFriction(prob, &fr));
   PetscCheck(!tp && !fr, comm, PETSC_ERR_USER_INPUT, "-method exact is implemented for one material with no-slip or free-slip walls; this scene has %s", tp ? "two phases" : "wall friction");
   {
-    PetscInt axis;
-    PetscCall(SlumpProblemGetAxisymmetric(prob, &axis));
-    PetscCheck(axis < 0, comm, PETSC_ERR_USER_INPUT, "-method exact is planar only; -geometry axisymmetric needs -method regularised");
-  }
-  {
     PetscReal r, tol;
     PetscInt  maxit;
     PetscBool adapt;

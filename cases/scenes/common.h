@@ -91,6 +91,11 @@ static inline PetscErrorCode SlumpSceneSteadyInitialState(SlumpScene scene, Slum
     PetscCall(SlumpProblemSetMesh(p0, dm0));
     PetscCall(DMDestroy(&dm0));
   }
+  {
+    PetscInt axis; /* the run's geometry */
+    PetscCall(SlumpProblemGetAxisymmetric(prob, &axis));
+    PetscCall(SlumpProblemSetAxisymmetric(p0, axis));
+  }
   PetscCall(configure(scene, p0));
   PetscCall(SlumpProblemSetFromOptions(p0));
   PetscCall(SlumpProblemGetRheology(prob, &r));

@@ -9,11 +9,17 @@
  * initial mean velocity (flux through "right" / 2H). Energy bound:
  *   T_stop <= (1/l1) ln(1 + l1 ||u0|| / (tau0 beta)),  l1 = pi^2/(2H)^2,
  *   beta = 2/sqrt(2H), ||u0|| the L2 norm across the channel
- * (= (4/pi^2) ln(1 + pi^2 ||u0|| / (4 sqrt(2) Bn)) for H = G = 1). */
+ * (= (4/pi^2) ln(1 + pi^2 ||u0|| / (4 sqrt(2) Bn)) for H = G = 1).
+ * -geometry axisymmetric: the pipe of radius R = H about the axis y = 0
+ * (r = y, u_r = 0 on the axis); Bn = 2 tau0/(G R), the plug radius of the
+ * initial flow over R; u0_mean = 2 Q/R^2 (Q per radian). Neither the 1-D
+ * exact reference nor the energy bound (its constant beta) is available
+ * for the pipe: -method exact gives its stopping time. */
 #include "common.h"
 
 typedef struct {
   PetscReal H, G, lower[2], upper[2];
+  PetscBool axi;       /* a pipe of radius H */
   PetscBool newtonian; /* initial flow of a Newtonian fluid */
   PetscReal tau0, eta; /* for the exact profile */
 } CessationCtx;
@@ -25,7 +31,8 @@ static PetscErrorCode ConfigureDriven(SlumpScene scene, SlumpProblem p0)
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemSetEffects(p0, SLUMP_EFFECT_BODY_FORCE));
   PetscCall(SlumpProblemSetBodyForce(p0, c->G, 0.0));
-  PetscCall(SlumpProblemAddVelocityBC(p0, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  if (c->axi) PetscCall(SlumpProblemAddFreeSlipBC(p0, "bottom")); /* the axis */
+  else PetscCall(SlumpProblemAddVelocityBC(p0, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(p0, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpSceneChannelEnds(p0));
   PetscFunctionReturn(0);
@@ -46,8 +53,8 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
   PetscReal     tau0, etap;
   PetscFunctionBeginUser;
   PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));
-  PetscCall(SlumpSceneAddResult(scene, "bn", tau0 / (c->G * c->H)));
-  if (tau0 > 0 && scene->nresult && c->H > 0) {
+  PetscCall(SlumpSceneAddResult(scene, "bn", (c->axi ? 2.0 : 1.0) * tau0 / (c->G * c->H)));
+  if (tau0 > 0 && scene->nresult && c->H > 0 && !c->axi) {
     /* analytic bound with the initial state's norm across the channel */
     const PetscReal L = 2.0 * c->H, l1 = PETSC_PI * PETSC_PI / (L * L), beta = 2.0 / PetscSqrtReal(L);
     PetscReal       u0 = 0.0;
@@ -68,9 +75,13 @@ static PetscErrorCode InitialAndNorm(SlumpScene scene, SlumpProblem prob, Vec X)
   PetscCall(SteadyInitial(scene, prob, X));
   PetscCall(SlumpProblemComputeDiagnostics(prob, 0.0, X, &d));
   PetscCall(SlumpSceneYieldParameters(prob, &tau0, &etap));
-  PetscCall(SlumpSceneAddResult(scene, "u0_norm", PetscSqrtReal(2.0 * d.kinetic_energy) / PetscSqrtReal(c->upper[0] - c->lower[0])));
-  PetscCall(SlumpSceneAddResult(scene, "u0_mean", d.flow_rate / (2.0 * c->H)));
-  if (d.flow_rate > 0) PetscCall(SlumpSceneAddResult(scene, "bn_mean", tau0 * c->H / (etap * d.flow_rate / (2.0 * c->H))));
+  {
+    /* the mean velocity over the section: Q/(2H), or (pipe, Q per radian) 2Q/R^2 */
+    const PetscReal umean = c->axi ? 2.0 * d.flow_rate / (c->H * c->H) : d.flow_rate / (2.0 * c->H);
+    PetscCall(SlumpSceneAddResult(scene, "u0_norm", PetscSqrtReal(2.0 * d.kinetic_energy) / PetscSqrtReal(c->upper[0] - c->lower[0])));
+    PetscCall(SlumpSceneAddResult(scene, "u0_mean", umean));
+    if (d.flow_rate > 0) PetscCall(SlumpSceneAddResult(scene, "bn_mean", tau0 * c->H / (etap * umean)));
+  }
   PetscFunctionReturn(0);
 }
 
@@ -108,22 +119,24 @@ PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProbl
   PetscCall(SlumpSceneInitialFlowOption(comm, &c->newtonian));
   if (c->newtonian) PetscCheck(bn > 0, comm, PETSC_ERR_USER_INPUT, "-bn must be positive; got %g", (double)bn);
   else PetscCheck(bn > 0 && bn < 1, comm, PETSC_ERR_USER_INPUT, "-bn must lie in (0, 1) (at Bn >= 1 the initial flow is at rest; -initial_flow newtonian allows any Bn > 0); got %g", (double)bn);
-  SlumpSceneSetCessationDefaults(scene, 0.5, 0.01, 2, 32);
+  PetscCall(SlumpSceneGeometry(prob, comm, 1, &c->axi));
+  SlumpSceneSetCessationDefaults(scene, 0.5, 0.01, 2, c->axi ? 16 : 32);
   c->lower[0]             = 0.0;
-  c->lower[1]             = -c->H;
+  c->lower[1]             = c->axi ? 0.0 : -c->H;
   c->upper[0]             = 0.25;
   c->upper[1]             = c->H;
   PetscCall(SlumpSceneSetMesh(scene, prob, comm, c->lower, c->upper));
   PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_INERTIA)); /* driving removed */
-  PetscCall(SlumpSceneSetBinghamDefaults(prob, bn * c->G * c->H));
-  PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+  PetscCall(SlumpSceneSetBinghamDefaults(prob, (c->axi ? 0.5 : 1.0) * bn * c->G * c->H));
+  if (c->axi) PetscCall(SlumpProblemAddFreeSlipBC(prob, "bottom"));
+  else PetscCall(SlumpProblemAddVelocityBC(prob, "wall_bottom", "bottom", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpProblemAddVelocityBC(prob, "wall_top", "top", 0, NULL, SlumpZeroVelocity, NULL, NULL));
   PetscCall(SlumpSceneChannelEnds(prob));
   PetscCall(SlumpProblemSetFlowRateBoundary(prob, "right"));
   scene->initial          = InitialAndNorm;
   scene->results          = Results;
-  scene->exact_arrest     = ExactArrest;
-  scene->bound_beta       = 2.0 / PetscSqrtReal(2.0 * c->H);
+  scene->exact_arrest     = c->axi ? NULL : ExactArrest;
+  scene->bound_beta       = c->axi ? 0.0 : 2.0 / PetscSqrtReal(2.0 * c->H);
   scene->bound_norm_scale = 1.0 / PetscSqrtReal(c->upper[0] - c->lower[0]);
   PetscCall(SlumpSceneAddParameter(scene, "bn_option", bn));
   PetscFunctionReturn(0);
