@@ -12,9 +12,11 @@
  * (= (4/pi^2) ln(1 + pi^2 ||u0|| / (4 sqrt(2) Bn)) for H = G = 1).
  * -geometry axisymmetric: the pipe of radius R = H about the axis y = 0
  * (r = y, u_r = 0 on the axis); Bn = 2 tau0/(G R), the plug radius of the
- * initial flow over R; u0_mean = 2 Q/R^2 (Q per radian). Neither the 1-D
- * exact reference nor the energy bound (its constant beta) is available
- * for the pipe: -method exact gives its stopping time. */
+ * initial flow over R; u0_mean = 2 Q/R^2 (Q per radian). Energy bound
+ * with the pipe's l1 = j1^2/R^2 (j1 = 2.40483) and beta = 2 sqrt(pi) (the
+ * sharp L1 Sobolev inequality on the disc), ||u0|| over the cross-section.
+ * The 1-D exact reference is planar: -method exact gives the pipe's
+ * stopping time. */
 #include "common.h"
 
 typedef struct {
@@ -60,6 +62,17 @@ static PetscErrorCode Results(SlumpScene scene, SlumpProblem prob, PetscReal t, 
     PetscReal       u0 = 0.0;
     PetscBool       found;
     PetscCall(SlumpSceneGetResult(scene, "u0_norm", &u0, &found));
+    if (found && u0 > 0) PetscCall(SlumpSceneAddResult(scene, "t_stop_bound", 1.0 / (etap * l1) * PetscLogReal(1.0 + etap * l1 * u0 / (tau0 * beta))));
+  }
+  if (tau0 > 0 && scene->nresult && c->axi) {
+    /* the pipe: l1 = j1^2/R^2 (J0's first zero), beta = 2 sqrt(pi) (the
+       sharp L1 Sobolev inequality on the cross-section), ||u0|| the L2 norm
+       over the disc, sqrt(2 pi) x the per-radian norm u0_norm */
+    const PetscReal j1 = 2.404825557695773, l1 = j1 * j1 / (c->H * c->H), beta = 2.0 * PetscSqrtReal(PETSC_PI);
+    PetscReal       u0 = 0.0;
+    PetscBool       found;
+    PetscCall(SlumpSceneGetResult(scene, "u0_norm", &u0, &found));
+    u0 *= PetscSqrtReal(2.0 * PETSC_PI);
     if (found && u0 > 0) PetscCall(SlumpSceneAddResult(scene, "t_stop_bound", 1.0 / (etap * l1) * PetscLogReal(1.0 + etap * l1 * u0 / (tau0 * beta))));
   }
   PetscFunctionReturn(0);
@@ -136,8 +149,8 @@ PetscErrorCode SlumpSceneCreate_PoiseuilleCessation(SlumpScene scene, SlumpProbl
   scene->initial          = InitialAndNorm;
   scene->results          = Results;
   scene->exact_arrest     = c->axi ? NULL : ExactArrest;
-  scene->bound_beta       = c->axi ? 0.0 : 2.0 / PetscSqrtReal(2.0 * c->H);
-  scene->bound_norm_scale = 1.0 / PetscSqrtReal(c->upper[0] - c->lower[0]);
+  scene->bound_beta       = c->axi ? 2.0 * PetscSqrtReal(PETSC_PI) : 2.0 / PetscSqrtReal(2.0 * c->H);
+  scene->bound_norm_scale = (c->axi ? PetscSqrtReal(2.0 * PETSC_PI) : 1.0) / PetscSqrtReal(c->upper[0] - c->lower[0]);
   PetscCall(SlumpSceneAddParameter(scene, "bn_option", bn));
   PetscFunctionReturn(0);
 }
