@@ -50,7 +50,7 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("duct_cessation", "anti-plane Bingham flow in a square duct (steady state by KINSOL), pressure gradient removed at t = 0", SlumpSceneCreate_DuctCessation));
   PetscCall(SlumpSceneRegister("cavity_cessation", "Bingham lid-driven cavity (steady state by KINSOL), lid stopped at t = 0; enclosed flow", SlumpSceneCreate_CavityCessation));
   PetscCall(SlumpSceneRegister("cavity", "steady Bingham lid-driven cavity (Re >= 0): stream-function maximum, vortex centre, unyielded areas", SlumpSceneCreate_Cavity));
-  PetscCall(SlumpSceneRegister("cylinder", "steady Bingham flow past a cylinder between walls (blockage 1/2, Gmsh mesh): drag coefficient", SlumpSceneCreate_Cylinder));
+  PetscCall(SlumpSceneRegister("cylinder", "steady Bingham flow past a cylinder between walls (blockage 1/2) or in a uniform stream (Gmsh meshes): drag coefficient", SlumpSceneCreate_Cylinder));
   PetscCall(SlumpSceneRegister("expansion", "steady Bingham flow through a planar 1:2 sudden expansion (Gmsh mesh): corner dead zone, developed flow downstream", SlumpSceneCreate_Expansion));
   PetscCall(SlumpSceneRegister("poiseuille", "steady Bingham plane Poiseuille flow driven by a pressure gradient; analytic solution", SlumpSceneCreate_Poiseuille));
   PetscCall(SlumpSceneRegister("decay", "Newtonian flow between plates decaying as sin(pi y) exp(-pi^2 nu t); analytic solution", SlumpSceneCreate_Decay));

@@ -1043,6 +1043,7 @@ INPUT_CASES = [
     ("axi_value", ["-scene", "poiseuille", "-geometry", "axi"], "-geometry"),
     ("axi_assembly", ["-scene", "poiseuille", "-geometry", "axisymmetric", "-assembly", "petsc"], "-assembly"),
     ("cylinder_cutoff", ["-scene", "cylinder", "-cylinder_cutoff", "2.5"], "-cylinder_cutoff"),
+    ("cylinder_domain", ["-scene", "cylinder", "-cylinder_domain", "free"], "-cylinder_domain"),
     ("cavity_grid", ["-scene", "cavity", "-cavity_grid", "5"], "-cavity_grid"),
 ]
 
@@ -2594,10 +2595,59 @@ def test_cylinder_exact():
         fail("unyielded fraction expected in [0.05, 0.4], got %g" % (1 - e["yielded_fraction_exact"]))
 
 
+def test_cylinder_unbounded():
+    """The Bingham cylinder in a uniform stream (-cylinder_domain unbounded,
+    box 90 R x 60 R, cases/data/cylinder_unbounded.msh, 3486 triangles),
+    Papanastasiou m = 1e4, Oldroyd numbers Od = tau0 D/(eta U) = 100, 1000,
+    1e4. The plastic drag coefficient Cd* = F/(tau0 D) tends, as Od grows,
+    to the limit load of a rough cylinder in a perfectly plastic medium,
+    2 pi + 4 sqrt 2 = 11.9389 (Randolph & Houlsby 1984; Tokpavi, Magnin & Jay
+    2008 recover it). Checked: Cd* decreases with Od and stays above the
+    limit (the upper-bound theorem: the viscous part only adds dissipation);
+    Od 1e4 within 2 % of it (measured 12.1015, +1.4 %); the Aitken
+    extrapolation of the three values within 1.5 % (measured 12.069,
+    +1.1 %; on the mesh of s = 0.5, 13846 triangles: 12.0453 at Od 1e4 and
+    11.986 extrapolated, +0.4 %); m = 1e5 changes Cd* at Od 1000 by less
+    than 1e-4 relative (measured 1.5e-5)."""
+    w = work("cylinder_unbounded")
+    limit = 2 * math.pi + 4 * math.sqrt(2)
+    cds = []
+    for od, extra in (("100", []), ("1000", []), ("1e4", ["-steady_continuation_factor", "3", "-newton_max_it", "100"])):
+        d = os.path.join(w, "od" + od)
+        run("cylinder", ["-cylinder_domain", "unbounded", "-bn", "%g" % (float(od) / 2), "-steady_continuation_start", "1e1", "-output_fields", "0", "-output_yield_map", "0"] + extra, d)
+        s = summary(d)
+        if not abs(s["oldroyd"] - float(od)) <= 1e-9 * float(od):
+            fail("Oldroyd number expected %s, summary says %g" % (od, s["oldroyd"]))
+        if not abs(s["drag_plastic_limit"] - limit) <= 1e-9 * limit:
+            fail("drag_plastic_limit expected %.12g, got %.12g" % (limit, s["drag_plastic_limit"]))
+        cds.append(s["drag_plastic"])
+        print("Od %s: Cd* = %.5f (%+.2f %% of the plastic limit %.5f)" % (od, cds[-1], 100 * (cds[-1] / limit - 1), limit))
+    for a, b in zip(cds, cds[1:]):
+        if not b < a:
+            fail("Cd* expected to decrease with Od: %s" % cds)
+    if not min(cds) > limit:
+        fail("Cd* expected above the plastic limit load %g (upper bound), got %s" % (limit, cds))
+    if not cds[-1] <= 1.02 * limit:
+        fail("Cd* at Od 1e4 expected within 2 %% of %g, got %g" % (limit, cds[-1]))
+    ext = (cds[0] * cds[2] - cds[1] ** 2) / (cds[0] + cds[2] - 2 * cds[1])
+    print("extrapolated Cd*(Od -> infinity) = %.4f (%+.2f %%)" % (ext, 100 * (ext / limit - 1)))
+    if not abs(ext / limit - 1) <= 0.015:
+        fail("extrapolated Cd* expected within 1.5 %% of %g, got %g" % (limit, ext))
+    d = os.path.join(w, "od1000_m1e5")
+    run("cylinder", ["-cylinder_domain", "unbounded", "-bn", "500", "-rheology_papanastasiou_m", "1e5", "-steady_continuation_start", "1e1", "-output_fields", "0", "-output_yield_map", "0"], d)
+    c5 = summary(d)["drag_plastic"]
+    rel = abs(c5 - cds[1]) / cds[1]
+    print("Od 1000: Cd* m = 1e4 %.6f, m = 1e5 %.6f (rel diff %.1e)" % (cds[1], c5, rel))
+    if not rel <= 1e-4:
+        fail("Cd* at m = 1e4 and 1e5 expected within 1e-4, got %g" % rel)
+
+
 def test_cylinder_parallel():
     """The cylinder on 2 ranks (METIS partition of the Gmsh mesh): the
     Newtonian drag coefficient equals the 1-rank value to 1e-9."""
     compare_ranks("cylinder_parallel", "cylinder", ["-rheology_type", "newtonian", "-output_fields", "0"], ("drag_coefficient", "kinetic_energy"), 1e-9)
+    # the unbounded domain at Od 100 (Bingham, m = 1e4, continuation from m = 10)
+    compare_ranks("cylinder_parallel_unbounded", "cylinder", ["-cylinder_domain", "unbounded", "-bn", "50", "-steady_continuation_start", "1e1", "-output_fields", "0", "-output_yield_map", "0"], ("drag_plastic", "kinetic_energy"), 1e-8)
 
 
 def test_expansion():
