@@ -504,7 +504,11 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
      with the status and the reason; an interrupted one (SIGINT, SIGTERM)
      ends after its current step and gets its summary too. */
   if (scene->steady) {
-    solve_err = exact ? SlumpSteadySolveExact(prob, X, &stats, &exact_yielded) : SlumpSteadySolve(prob, X, &stats);
+    if (scene->initial_solved && !exact && !restart_file) {
+      stats     = scene->initial_stats;
+      solve_err = 0;
+      PetscCall(SlumpProblemGetCounters(prob, &stats.res_evals, &stats.jac_evals));
+    } else solve_err = exact ? SlumpSteadySolveExact(prob, X, &stats, &exact_yielded) : SlumpSteadySolve(prob, X, &stats);
     t_final   = 0.0;
     if (!solve_err) PetscCall(WriteDiagnostics(&r, 0.0, X, 0.0, 0));
   } else {

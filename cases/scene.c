@@ -23,6 +23,7 @@ PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DuctCessation(SlumpScene, SlumpProb
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_CavityCessation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Cavity(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Cylinder(SlumpScene, SlumpProblem, MPI_Comm);
+PETSC_EXTERN PetscErrorCode SlumpSceneCreate_GranularCylinder(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_Expansion(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_LevelSetRotation(SlumpScene, SlumpProblem, MPI_Comm);
 PETSC_EXTERN PetscErrorCode SlumpSceneCreate_DamBreak(SlumpScene, SlumpProblem, MPI_Comm);
@@ -56,6 +57,7 @@ PetscErrorCode SlumpSceneRegisterAll(void)
   PetscCall(SlumpSceneRegister("decay", "Newtonian flow between plates decaying as sin(pi y) exp(-pi^2 nu t); analytic solution", SlumpSceneCreate_Decay));
   PetscCall(SlumpSceneRegister("couette_startup", "Newtonian Couette start-up, top plate accelerating as 1 - exp(-t/tau); exact series solution", SlumpSceneCreate_CouetteStartup));
   PetscCall(SlumpSceneRegister("bagnold", "mu(I) layer on a rough inclined plane (Chauchat & Medale); analytic Bagnold profile", SlumpSceneCreate_Bagnold));
+  PetscCall(SlumpSceneRegister("granular_cylinder", "mu(I) chute flow over a cylinder between rough walls under a confining pressure (Chauchat & Medale 2014): flow rate, drag", SlumpSceneCreate_GranularCylinder));
   PetscCall(SlumpSceneRegister("vertical_chute", "mu(I) flow between rough vertical walls at uniform pressure; analytic profile and plug", SlumpSceneCreate_VerticalChute));
   PetscCall(SlumpSceneRegister("duct", "anti-plane Bingham flow in a square duct (Mosolov problem); flow threshold Bn_c = 1/(2 + sqrt(pi))", SlumpSceneCreate_Duct));
   PetscCall(SlumpSceneRegister("levelset_rotation", "circle or slotted disc in a rotating field (prescribed velocity): level-set transport and reinitialisation", SlumpSceneCreate_LevelSetRotation));

@@ -30,6 +30,11 @@ struct _n_SlumpScene {
   PetscReal pvalue[SLUMP_SCENE_MAX_ITEMS];
   /* optional: compute the initial state into X (e.g. a steady state by KINSOL) */
   PetscErrorCode (*initial)(SlumpScene, SlumpProblem, Vec X);
+  /* a steady scene whose initial() ends on the converged steady state (a
+     continuation of its own): the driver reports that state and these
+     counters instead of solving again from it */
+  PetscBool  initial_solved;
+  SlumpStats initial_stats;
   /* scene-specific results at the end of the run (plug width, bounds, ...) */
   PetscErrorCode (*results)(SlumpScene, SlumpProblem, PetscReal t, Vec X);
   PetscInt  nresult;

@@ -119,6 +119,7 @@ PetscErrorCode SlumpProblemSetBodyForce(SlumpProblem prob, PetscReal gx, PetscRe
   PetscFunctionBeginUser;
   prob->g[0] = gx;
   prob->g[1] = gy;
+  if (prob->setup) PetscCall(SlumpProblemSetConstantsAll(prob)); /* a continuation in the load */
   PetscFunctionReturn(0);
 }
 

@@ -1044,6 +1044,10 @@ INPUT_CASES = [
     ("axi_assembly", ["-scene", "poiseuille", "-geometry", "axisymmetric", "-assembly", "petsc"], "-assembly"),
     ("cylinder_cutoff", ["-scene", "cylinder", "-cylinder_cutoff", "2.5"], "-cylinder_cutoff"),
     ("cylinder_domain", ["-scene", "cylinder", "-cylinder_domain", "free"], "-cylinder_domain"),
+    ("granular_cylinder_pressure", ["-scene", "granular_cylinder", "-granular_cylinder_pressure", "-1"], "-granular_cylinder_pressure"),
+    ("granular_cylinder_load", ["-scene", "granular_cylinder", "-granular_cylinder_load", "0"], "-granular_cylinder_load"),
+    ("granular_cylinder_load_step", ["-scene", "granular_cylinder", "-granular_cylinder_load_step", "0"], "-granular_cylinder_load_step"),
+    ("granular_cylinder_lambda", ["-scene", "granular_cylinder", "-granular_cylinder_load_lambda_r", "0"], "-granular_cylinder_load_lambda_r"),
     ("cavity_grid", ["-scene", "cavity", "-cavity_grid", "5"], "-cavity_grid"),
 ]
 
@@ -2640,6 +2644,70 @@ def test_cylinder_unbounded():
     print("Od 1000: Cd* m = 1e4 %.6f, m = 1e5 %.6f (rel diff %.1e)" % (cds[1], c5, rel))
     if not rel <= 1e-4:
         fail("Cd* at m = 1e4 and 1e5 expected within 1e-4, got %g" % rel)
+
+
+def test_granular_cylinder():
+    """The mu(I) chute flow over a cylinder of Chauchat & Medale (2014, sec.
+    4.2) in the plane (granular_cylinder: channel 20 D x 30 D, D = 10 d, rough
+    walls, confining pressure p_ext at both ends, mui_cm with mu_s 0.4,
+    dmu 0.25, I0 0.3, inertia on; cases/data/granular_cylinder.msh).
+    (1) The creeping regime below the onset is the regularisation's: at load
+    F = 0.03 the mean velocity scales with lambda_r (1e-3 against 1e-4:
+    ratio 10 within 1 %, measured 9.992) while the drag does not (within
+    0.5 %, measured 0.11 %).
+    (2) At their F = 0.054 the material flows: the Froude number is at least
+    100 times the creeping one at the same lambda_r (measured 0.597 against
+    0.00111), and the flow rates through both ends agree to 1e-9.
+    (3) The similarity of mu(I): p_ext -> 10 p_ext with lambda_r -> sqrt(10)
+    lambda_r and the pressure regularisation -> 10 d leaves F_D/(p_ext D),
+    the Froude number and the cylinder's share of the weight unchanged to
+    1e-6 and multiplies the flow rate by sqrt(10) to 1e-6.
+    (4) At fixed lambda_r = 1e-4, F_D/(p_ext D) at p_ext = 1000 is within
+    1 % of its value at 100 (measured 6.1116 and 6.0996): the drag is linear
+    in the confining pressure, the collapse of their Fig. 12."""
+    w = work("granular_cylinder")
+
+    def gc(name, opts):
+        d = os.path.join(w, name)
+        run("granular_cylinder", opts + ["-output_fields", "0", "-output_yield_map", "0"], d)
+        return summary(d)
+
+    c3 = gc("creep_lr1e-3", ["-granular_cylinder_load", "0.03", "-rheology_mui_lambda_r", "1e-3"])
+    c4 = gc("creep_lr1e-4", ["-granular_cylinder_load", "0.03"])
+    ru = c3["mean_velocity"] / c4["mean_velocity"]
+    rd = abs(c3["drag_over_pressure"] / c4["drag_over_pressure"] - 1)
+    print("F 0.03: U %.6g (lambda_r 1e-3), %.6g (1e-4), ratio %.4f; F_D/(p D) %.5f and %.5f (rel diff %.1e)" % (c3["mean_velocity"], c4["mean_velocity"], ru, c3["drag_over_pressure"], c4["drag_over_pressure"], rd))
+    if not abs(ru / 10 - 1) <= 0.01:
+        fail("creeping velocity expected proportional to lambda_r (ratio 10 within 1 %%), got %g" % ru)
+    if not rd <= 0.005:
+        fail("creeping drag expected independent of lambda_r within 0.5 %%, got %g" % rd)
+    a = gc("p100", [])
+    print("F 0.054, p 100: U %.6g, Fr %.6g, F_D/(p D) %.6f, weight share %.4f, Q %.6g" % (a["mean_velocity"], a["froude"], a["drag_over_pressure"], a["drag_weight_fraction"], a["flow_rate"]))
+    if not a["froude"] >= 100 * c4["froude"]:
+        fail("F 0.054 expected flowing (Fr >= 100 x the creeping %g), got %g" % (c4["froude"], a["froude"]))
+    if not a["flow_rate_ends_difference"] <= 1e-9 * a["flow_rate"]:
+        fail("flow rates through both ends expected equal to 1e-9, differ by %g" % a["flow_rate_ends_difference"])
+    b = gc("p1000_similar", ["-granular_cylinder_pressure", "1000", "-rheology_mui_lambda_r", repr(1e-4 * math.sqrt(10)), "-rheology_pressure_reg", "1e-3"])
+    for k in ("drag_over_pressure", "froude", "drag_weight_fraction"):
+        rel = abs(b[k] / a[k] - 1)
+        print("similarity: %-20s p 100 %.9g  p 1000 %.9g  rel diff %.1e" % (k, a[k], b[k], rel))
+        if not rel <= 1e-6:
+            fail("similarity: %s expected unchanged to 1e-6, got %g" % (k, rel))
+    rq = b["flow_rate"] / a["flow_rate"] / math.sqrt(10)
+    print("similarity: Q(1000)/Q(100)/sqrt(10) = %.9f" % rq)
+    if not abs(rq - 1) <= 1e-6:
+        fail("similarity: flow rate expected to scale with sqrt(10) to 1e-6, got %g" % rq)
+    c = gc("p1000", ["-granular_cylinder_pressure", "1000"])
+    rel = abs(c["drag_over_pressure"] / a["drag_over_pressure"] - 1)
+    print("fixed lambda_r 1e-4: F_D/(p D) %.5f (p 100), %.5f (p 1000), rel diff %.1e; Fr %.4f and %.4f" % (a["drag_over_pressure"], c["drag_over_pressure"], rel, a["froude"], c["froude"]))
+    if not rel <= 0.01:
+        fail("F_D/(p D) expected within 1 %% at p 100 and 1000, got %g" % rel)
+
+
+def test_granular_cylinder_parallel():
+    """granular_cylinder on 2 ranks (METIS partition), creeping regime at
+    F = 0.03: flow rate and drag equal the 1-rank values to 1e-8."""
+    compare_ranks("granular_cylinder_parallel", "granular_cylinder", ["-granular_cylinder_load", "0.03", "-output_fields", "0", "-output_yield_map", "0"], ("flow_rate", "drag"), 1e-8)
 
 
 def test_cylinder_parallel():

@@ -18,6 +18,10 @@
  * defaults to mui_cm (their eq. 12) with lambda_r = 1e-4; any mu(I) type works. */
 #include "common.h"
 
+#ifndef SLUMP_DATA_DIR
+  #define SLUMP_DATA_DIR "cases/data"
+#endif
+
 typedef struct {
   PetscInt      kind; /* 0 chute, 1 bagnold */
   PetscReal     p, b, alpha, H;
@@ -176,5 +180,229 @@ PetscErrorCode SlumpSceneCreate_Bagnold(SlumpScene scene, SlumpProblem prob, MPI
 {
   PetscFunctionBeginUser;
   PetscCall(CreateGranular(scene, prob, comm, 1));
+  PetscFunctionReturn(0);
+}
+
+/* granular_cylinder: the dry granular chute flow over a cylinder of Chauchat &
+ * Medale (2014, section 4.2) in the plane, in the units above (d, phi rho g0
+ * d, sqrt(d/g0)). A vertical channel W = 20 D wide and L = 30 D long between
+ * rough walls, the cylinder of diameter D = 10 d (their d/D = 0.1) at its
+ * centre, the flow along -x; the half 0 <= y <= W/2 with the symmetry plane
+ * y = 0 (cases/data/granular_cylinder.msh). Both ends carry the confining
+ * pressure p_ext (zero tangential velocity, normal stress -p_ext); the body
+ * force per unit volume is G = F p_ext / D along -x, F = phi rho G D / p_ext
+ * their dimensionless load (their F_adim; the factor D, not their L_x, makes
+ * the walls alone hold the material for F < 2 mu_s D/W = mu_s/10, as it must
+ * by the balance of forces). Inertia and convection are on: the steady
+ * momentum equation is theirs (eq. 7).
+ * Results: the flow rate Q of the whole channel, its mean velocity U = Q/W,
+ * the Froude numbers U/sqrt(G D) and U/sqrt(G (D + d)), the drag F_D of the
+ * cylinder (force along the flow per unit span), F_D/(p_ext D), the drag
+ * coefficient C_D = F_D/(rho U^2 D/2) and the share of the weight the
+ * cylinder carries (the walls carry the rest). */
+typedef struct {
+  PetscReal D, W, L, p, F, G, cut, dF, lr_load;
+} GranularCylinderCtx;
+
+static void GranularCylinderCutoff(const PetscReal x[], void *ctx, PetscReal *phi, PetscReal dphi[])
+{
+  const GranularCylinderCtx *c = (const GranularCylinderCtx *)ctx;
+  const PetscReal            R = 0.5 * c->D, r = PetscSqrtReal(x[0] * x[0] + x[1] * x[1]), r1 = c->cut * R;
+  dphi[0] = dphi[1] = 0.0;
+  if (r >= r1) *phi = 0.0;
+  else if (r <= R * (1 + 1e-12)) *phi = 1.0;
+  else {
+    *phi    = (r1 - r) / (r1 - R);
+    dphi[0] = -x[0] / (r * (r1 - R));
+    dphi[1] = -x[1] / (r * (r1 - R));
+  }
+}
+
+static PetscErrorCode GranularCylinderPressure(PetscInt dim, PetscReal t, const PetscReal x[], PetscInt Nc, PetscScalar p[], void *ctx)
+{
+  p[0] = ((const GranularCylinderCtx *)ctx)->p;
+  return 0;
+}
+
+static PetscErrorCode GranularCylinderResults(SlumpScene scene, SlumpProblem prob, PetscReal t, Vec X)
+{
+  GranularCylinderCtx *c = (GranularCylinderCtx *)scene->ctx;
+  const PetscReal      rho = 1.0; /* phi rho: the unit of density */
+  PetscReal            Fx, um[2], Q, U, weight;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemComputeBoundaryForce(prob, t, X, GranularCylinderCutoff, c, 0, &Fx));
+  /* the flow rate through both ends (the same for an incompressible flow) */
+  PetscCall(SlumpProblemComputeBoundaryMean(prob, t, X, "bottom_end", 0, &um[0]));
+  PetscCall(SlumpProblemComputeBoundaryMean(prob, t, X, "top_end", 0, &um[1]));
+  Q = -0.5 * (um[0] + um[1]) * c->W;
+  U = Q / c->W;
+  weight = rho * c->G * (c->W * c->L - 0.25 * PETSC_PI * c->D * c->D);
+  PetscCall(SlumpSceneAddResult(scene, "flow_rate", Q));
+  PetscCall(SlumpSceneAddResult(scene, "flow_rate_ends_difference", PetscAbsReal(um[0] - um[1]) * 0.5 * c->W));
+  PetscCall(SlumpSceneAddResult(scene, "mean_velocity", U));
+  PetscCall(SlumpSceneAddResult(scene, "froude", U / PetscSqrtReal(c->G * c->D)));
+  PetscCall(SlumpSceneAddResult(scene, "froude_effective", U / PetscSqrtReal(c->G * (c->D + 1.0))));
+  /* the fluid's force on the cylinder along the flow (-x), both halves */
+  PetscCall(SlumpSceneAddResult(scene, "drag", -2.0 * Fx));
+  PetscCall(SlumpSceneAddResult(scene, "drag_over_pressure", -2.0 * Fx / (c->p * c->D)));
+  if (U > 0) PetscCall(SlumpSceneAddResult(scene, "drag_coefficient", -2.0 * Fx / (0.5 * rho * U * U * c->D)));
+  PetscCall(SlumpSceneAddResult(scene, "drag_weight_fraction", -2.0 * Fx / weight));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode AddStats(SlumpStats *sum, const SlumpStats *st)
+{
+  PetscFunctionBeginUser;
+  sum->newton_its += st->newton_its;
+  sum->lin_its += st->lin_its;
+  sum->lin_solves += st->lin_solves;
+  sum->conv_fails += st->conv_fails;
+  PetscFunctionReturn(0);
+}
+
+/* The steady state, by continuation (the driver reports it without solving
+   again). First in the load, as Chauchat & Medale apply theirs: from half
+   the walls' onset mu_s D/W (the static regime, where Newton converges from
+   rest) up to F by steps of at most dF, halved (down to dF/64) when a solve
+   fails and grown by 1.5 after a success. A direct solve from rest fails
+   above the onset (F 0.045: no decrease of max|F| in 14 Newton iterations),
+   and so does a step across the onset of the flow at lambda_r = 1e-4 (the
+   continuation stalls at F = 0.0485). So the load continuation runs at the
+   softer lr_load (1e-3 at p_ext = 100, scaled as the shear-rate unit
+   sqrt(p_ext)), and the regularisation is then halved down to the model's at
+   the final load. */
+static PetscErrorCode GranularCylinderInitial(SlumpScene scene, SlumpProblem prob, Vec X)
+{
+  GranularCylinderCtx *c = (GranularCylinderCtx *)scene->ctx;
+  SlumpRheology        rheo;
+  SlumpStats           st;
+  PetscReal            mus, F, Fok = 0.0, step = c->dF, target;
+  const char          *regname;
+  PetscBool            larger_stiffer, soft;
+  PetscInt             nsolve = 0, nfail = 0;
+  Vec                  Xok;
+  MPI_Comm             comm;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologyGetParameter(rheo, "mu_s", &mus));
+  PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &larger_stiffer));
+  soft = regname && !larger_stiffer && target < c->lr_load;
+  if (soft) {
+    PetscCall(PetscPrintf(comm, "load continuation at %s = %g (the model's %g: the driver's solve ends there)\n", regname, (double)c->lr_load, (double)target));
+    PetscCall(SlumpProblemSetRheologyParameter(prob, regname, c->lr_load));
+  }
+  PetscCall(VecDuplicate(X, &Xok));
+  F = PetscMin(mus * c->D / c->W, c->F);
+  for (;;) {
+    PetscErrorCode ierr;
+    PetscCall(VecCopy(X, Xok));
+    PetscCall(PetscPrintf(comm, "load continuation: F = %.6g\n", (double)F));
+    PetscCall(SlumpProblemSetBodyForce(prob, -F * c->p / c->D, 0.0));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = SlumpSteadySolve(prob, X, &st);
+    PetscCall(PetscPopErrorHandler());
+    ++nsolve;
+    if (ierr == PETSC_ERR_NOT_CONVERGED) {
+      scene->initial_stats.conv_fails++;
+      /* the first load (walls alone hold the column) must converge */
+      PetscCheck(nsolve > 1, comm, PETSC_ERR_NOT_CONVERGED, "The steady solve of granular_cylinder failed at the first load F = %g", (double)F);
+      ++nfail;
+      PetscCall(VecCopy(Xok, X));
+      step = 0.5 * PetscMin(step, F - Fok);
+      PetscCheck(step >= c->dF / 64, comm, PETSC_ERR_NOT_CONVERGED, "The load continuation of granular_cylinder stalled at F = %g (last converged load %g); try a smaller -granular_cylinder_load_step or a larger -rheology_mui_lambda_r", (double)F, (double)Fok);
+      F = Fok + step;
+      continue;
+    }
+    PetscCall(ierr);
+    PetscCall(AddStats(&scene->initial_stats, &st));
+    Fok = F;
+    if (F >= c->F) break;
+    step = PetscMin(1.5 * step, c->dF);
+    F    = PetscMin(F + step, c->F);
+  }
+  /* then down to the model's regularisation at the final load, halving it
+     (F 0.054: a direct step from 1e-3 to 1e-4 fails; halving takes 4 solves
+     of 8 to 16 Newton iterations) */
+  for (PetscReal v = soft ? c->lr_load : target; v > target;) {
+    PetscErrorCode ierr;
+    v = PetscMax(0.5 * v, target);
+    if (v < 1.0001 * target) v = target;
+    PetscCall(PetscPrintf(comm, "regularisation continuation: %s = %.6g\n", regname, (double)v));
+    PetscCall(SlumpProblemSetRheologyParameter(prob, regname, v));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = SlumpSteadySolve(prob, X, &st);
+    PetscCall(PetscPopErrorHandler());
+    if (ierr == PETSC_ERR_NOT_CONVERGED) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, target));
+    PetscCheck(ierr != PETSC_ERR_NOT_CONVERGED, comm, PETSC_ERR_NOT_CONVERGED, "The continuation of granular_cylinder in %s from %g down to the model's %g failed at %g (load F = %g); try a larger %s for the model", regname, (double)c->lr_load, (double)target, (double)v, (double)c->F, regname);
+    PetscCall(ierr);
+    PetscCall(AddStats(&scene->initial_stats, &st));
+  }
+  PetscCall(VecDestroy(&Xok));
+  scene->initial_solved = PETSC_TRUE;
+  PetscCall(PetscPrintf(comm, "load continuation: %" PetscInt_FMT " steady solves (%" PetscInt_FMT " failed and retried with half the step) up to F = %g\n", nsolve, nfail, (double)c->F));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSceneCreate_GranularCylinder(SlumpScene scene, SlumpProblem prob, MPI_Comm comm)
+{
+  GranularCylinderCtx *c;
+  SlumpRheology        rheo;
+  PetscReal            lower[2], upper[2];
+  PetscBool            inertia = PETSC_TRUE;
+  PetscFunctionBeginUser;
+  PetscCall(PetscNew(&c));
+  scene->ctx = c;
+  c->D       = 10.0;
+  c->W       = 20.0 * c->D;
+  c->L       = 30.0 * c->D;
+  c->p       = 10.0 * c->D;
+  c->F       = 0.054;
+  c->cut     = 1.8;
+  c->dF      = 0.005;
+  PetscOptionsBegin(comm, NULL, "Scene granular_cylinder", "");
+  PetscCall(PetscOptionsReal("-granular_cylinder_pressure", "Confining pressure p_ext at both ends (units phi rho g0 d; 100 = 10 phi rho g0 D)", "", c->p, &c->p, NULL));
+  PetscCall(PetscOptionsReal("-granular_cylinder_load", "Dimensionless load F = phi rho G D/p_ext (body force G = F p_ext/D along the flow)", "", c->F, &c->F, NULL));
+  PetscCall(PetscOptionsReal("-granular_cylinder_load_step", "Step of the continuation in the load, from mu_s D/W (the initial state)", "", c->dF, &c->dF, NULL));
+  c->lr_load = 1e-3 * PetscSqrtReal(c->p / 100.0);
+  PetscCall(PetscOptionsReal("-granular_cylinder_load_lambda_r", "Shear-rate regularisation of the load continuation, when the model's is smaller (then halved down to the model's); default 1e-3 sqrt(p_ext/100)", "", c->lr_load, &c->lr_load, NULL));
+  PetscCall(PetscOptionsBool("-granular_cylinder_inertia", "Inertia and convection (their steady momentum equation); false: quasi-static", "", inertia, &inertia, NULL));
+  PetscOptionsEnd();
+  PetscCheck(c->p > 0, comm, PETSC_ERR_USER_INPUT, "-granular_cylinder_pressure must be positive; got %g", (double)c->p);
+  PetscCheck(c->F > 0, comm, PETSC_ERR_USER_INPUT, "-granular_cylinder_load must be positive; got %g", (double)c->F);
+  PetscCheck(c->lr_load > 0, comm, PETSC_ERR_USER_INPUT, "-granular_cylinder_load_lambda_r must be positive; got %g", (double)c->lr_load);
+  PetscCheck(c->dF > 0, comm, PETSC_ERR_USER_INPUT, "-granular_cylinder_load_step must be positive; got %g", (double)c->dF);
+  c->G          = c->F * c->p / c->D;
+  scene->steady = PETSC_TRUE;
+  lower[0]      = -0.5 * c->L;
+  lower[1]      = 0.0;
+  upper[0]      = 0.5 * c->L;
+  upper[1]      = 0.5 * c->W;
+  PetscCall(SlumpSceneSetShippedMesh(scene, prob, comm, SLUMP_DATA_DIR, "granular_cylinder", lower, upper));
+  PetscCall(SlumpProblemSetEffects(prob, SLUMP_EFFECT_BODY_FORCE | (inertia ? SLUMP_EFFECT_INERTIA | SLUMP_EFFECT_CONVECTION : 0)));
+  PetscCall(SlumpProblemSetDensity(prob, 1.0));
+  PetscCall(SlumpProblemSetBodyForce(prob, -c->G, 0.0));
+  PetscCall(SlumpProblemSetSceneConstant(prob, 0, c->p));
+  {
+    const PetscInt compy = 1;
+    PetscCall(SlumpProblemAddVelocityBC(prob, "wall", "wall", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+    PetscCall(SlumpProblemAddVelocityBC(prob, "cylinder", "cylinder", 0, NULL, SlumpZeroVelocity, NULL, NULL));
+    PetscCall(SlumpProblemAddFreeSlipBC(prob, "symmetry"));
+    PetscCall(SlumpProblemAddVelocityBC(prob, "top_end_v", "top_end", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+    PetscCall(SlumpProblemAddVelocityBC(prob, "bottom_end_v", "bottom_end", 1, &compy, SlumpZeroVelocity, NULL, NULL));
+    PetscCall(SlumpProblemAddTractionBC(prob, "top_end", EndTraction));
+    PetscCall(SlumpProblemAddTractionBC(prob, "bottom_end", EndTraction));
+  }
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologySetType(rheo, "mui_cm"));
+  PetscCall(SlumpRheologySetParameter(rheo, "mu_s", 0.4));
+  PetscCall(SlumpRheologySetParameter(rheo, "delta_mu", 0.25));
+  PetscCall(SlumpRheologySetParameter(rheo, "I0", 0.3));
+  PetscCall(SlumpProblemSetInitialPressure(prob, GranularCylinderPressure, c));
+  scene->results = GranularCylinderResults;
+  scene->initial = GranularCylinderInitial;
+  PetscCall(SlumpSceneAddParameter(scene, "pressure", c->p));
+  PetscCall(SlumpSceneAddParameter(scene, "load", c->F));
+  PetscCall(SlumpSceneAddParameter(scene, "body_force", c->G));
   PetscFunctionReturn(0);
 }
