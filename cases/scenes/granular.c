@@ -310,7 +310,7 @@ static PetscErrorCode GranularCylinderInitial(SlumpScene scene, SlumpProblem pro
       ++nfail;
       PetscCall(VecCopy(Xok, X));
       step = 0.5 * PetscMin(step, F - Fok);
-      PetscCheck(step >= c->dF / 64, comm, PETSC_ERR_NOT_CONVERGED, "The load continuation of granular_cylinder stalled at F = %g (last converged load %g); try a smaller -granular_cylinder_load_step or a larger -rheology_mui_lambda_r", (double)F, (double)Fok);
+      PetscCheck(step >= c->dF / 64, comm, PETSC_ERR_NOT_CONVERGED, "The load continuation of granular_cylinder stalled at F = %g (last converged load %g); try a smaller -granular_cylinder_load_step or a larger -granular_cylinder_load_lambda_r (with inertia, no steady state was found above F = 0.0559 at p_ext = 100)", (double)F, (double)Fok);
       F = Fok + step;
       continue;
     }
