@@ -438,6 +438,90 @@ PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec loc
   PetscFunctionReturn(0);
 }
 
+/* The Schur-complement preconditioner of the velocity-pressure Jacobian
+   [A B^T; B 0]: S = -B A^{-1} B^T is approximated cell by cell by
+     Sp = - int q p / (eta_q + m_q |K|),
+   eta_q the viscosity the velocity block sees at the quadrature point (the
+   mean of the diagonal entries of its g3 kernel, eta (1 + delta_cd) for
+   tau = eta (grad u + grad u^T)), m_q the mass per unit volume of its g0
+   (shift rho: inertia), |K| the cell area. Viscous-dominated (eta >> m |K|)
+   this is the viscosity-weighted pressure mass matrix, spectrally equivalent
+   to S whatever the variation of eta (Grinevich & Olshanskii 2009); the
+   m |K| term is a local stand-in for the pressure Laplacian / (rho cj) of
+   Cahouet and Chabard when the time step is small. */
+PetscErrorCode SlumpAssembleSchurMass(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat Sp)
+{
+  SlumpAssembly      a = prob->assembly;
+  PetscDS            ds;
+  PetscPointJac      g0, g1, g2, g3;
+  const PetscScalar *constants, *xa, *ta = NULL, *la = NULL;
+  PetscInt           nc, dim = a->dim, kd = a->kdim;
+  const PetscInt     Nbp = a->Nb[1], offp = a->off[1], NcU = a->kNc[0];
+  CellData          *cd;
+  PetscFunctionBeginUser;
+  PetscCall(DMGetDS(prob->dm, &ds));
+  PetscCall(PetscDSGetConstants(ds, &nc, &constants));
+  PetscCall(PetscDSGetJacobian(ds, 0, 0, &g0, &g1, &g2, &g3));
+  PetscCheck(g3, prob->comm, PETSC_ERR_SUP, "The Schur preconditioner needs a viscous velocity block");
+  if (!prob->pidx) {
+    PetscSection ls, gs;
+    PetscCall(DMGetLocalSection(prob->dmP, &ls));
+    PetscCall(DMGetGlobalSection(prob->dmP, &gs));
+    PetscCall(PetscMalloc1(a->ncell * Nbp, &prob->pidx));
+    for (PetscInt c = 0; c < a->ncell; ++c) {
+      PetscInt nidx, *idx = NULL;
+      PetscCall(DMPlexGetClosureIndices(prob->dmP, ls, gs, a->cStart + c, PETSC_TRUE, &nidx, &idx, NULL, NULL));
+      PetscCheck(nidx == Nbp, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Pressure closure size %" PetscInt_FMT " differs from %" PetscInt_FMT, nidx, Nbp);
+      for (PetscInt b = 0; b < Nbp; ++b) prob->pidx[c * Nbp + b] = idx[b];
+      PetscCall(DMPlexRestoreClosureIndices(prob->dmP, ls, gs, a->cStart + c, PETSC_TRUE, &nidx, &idx, NULL, NULL));
+    }
+  }
+  PetscCall(PetscLogEventBegin(SLUMP_Jacobian, 0, 0, 0, 0));
+  PetscCall(MatZeroEntries(Sp));
+  PetscCall(PetscMalloc1(1, &cd));
+  const PetscInt     NfA = prob->lagSet ? a->Nf : 0;
+  const PetscInt    *aO = NfA ? a->uOff : NULL, *aOx = NfA ? a->uOff_x : NULL;
+  const PetscScalar *S  = (prob->dualOn && prob->dualInSolve) ? prob->dual : NULL;
+  PetscCall(VecGetArrayRead(locX, &xa));
+  if (locXdot) PetscCall(VecGetArrayRead(locXdot, &ta));
+  if (NfA) PetscCall(VecGetArrayRead(prob->locLag, &la));
+  for (PetscInt c = 0; c < a->ncell; ++c) {
+    PetscScalar em[MAXNB * MAXNB];
+    PetscCall(PetscArrayzero(em, Nbp * Nbp));
+    EvaluateCell(a, c, xa, ta, la, cd);
+    for (PetscInt q = 0; q < a->Nq; ++q) {
+      const PetscReal wq = a->w[q] * cd->detJ * RadialWeight(a, cd, q);
+      PetscScalar     G0[9], G3[81];
+      PetscReal       eta = 0.0, m = 0.0, wt;
+      PetscCall(PetscArrayzero(G3, NcU * NcU * kd * kd));
+      g3(kd, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, NfA ? &cd->ul[q * 8] : NULL, S ? &S[(c * a->Nq + q) * prob->dualNs] : NULL, NfA ? &cd->ulx[q * 24] : NULL, t, shift, &cd->x[q * 3], nc, constants, G3);
+      for (PetscInt k = 0; k < dim; ++k)
+        for (PetscInt d = 0; d < dim; ++d) eta += PetscRealPart(G3[((k * NcU + k) * kd + d) * kd + d]);
+      eta /= (PetscReal)(dim * dim + dim);
+      if (g0) {
+        PetscCall(PetscArrayzero(G0, NcU * NcU));
+        g0(kd, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, NfA ? &cd->ul[q * 8] : NULL, S ? &S[(c * a->Nq + q) * prob->dualNs] : NULL, NfA ? &cd->ulx[q * 24] : NULL, t, shift, &cd->x[q * 3], nc, constants, G0);
+        for (PetscInt k = 0; k < dim; ++k) m += PetscRealPart(G0[k * NcU + k]);
+        m = PetscMax(m / dim, 0.0);
+      }
+      wt = -wq / (PetscMax(eta, PETSC_SMALL) + 2.0 * cd->detJ * m);
+      for (PetscInt i = 0; i < Nbp; ++i) {
+        const PetscReal pi = a->phi[q * MAXNB + offp + i] * wt;
+        for (PetscInt j = 0; j < Nbp; ++j) em[i * Nbp + j] += pi * a->phi[q * MAXNB + offp + j];
+      }
+    }
+    PetscCall(MatSetValues(Sp, Nbp, &prob->pidx[c * Nbp], Nbp, &prob->pidx[c * Nbp], em, ADD_VALUES));
+  }
+  if (NfA) PetscCall(VecRestoreArrayRead(prob->locLag, &la));
+  if (locXdot) PetscCall(VecRestoreArrayRead(locXdot, &ta));
+  PetscCall(VecRestoreArrayRead(locX, &xa));
+  PetscCall(PetscFree(cd));
+  PetscCall(MatAssemblyBegin(Sp, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Sp, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscLogEventEnd(SLUMP_Jacobian, 0, 0, 0, 0));
+  PetscFunctionReturn(0);
+}
+
 /* The plastic stress S at every (cell, quadrature point): consistent with
    locX (locdX NULL), or updated from the linearisation point locX with the
    Newton correction locdX (zero on constrained dofs). */

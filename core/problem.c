@@ -21,6 +21,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->extraField     = -1;
   p->axis           = -1;
   p->yieldedOverride = -1.0;
+  p->linForcing     = PETSC_TRUE;
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
   PetscFunctionReturn(0);
@@ -37,6 +38,7 @@ PetscErrorCode SlumpProblemDestroy(SlumpProblem *prob)
   PetscCall(VecDestroy(&p->locF));
   PetscCall(VecDestroy(&p->diagX));
   PetscCall(SlumpAssemblyDestroy(&p->assembly));
+  PetscCall(SlumpProblemLinearDestroy(p));
   PetscCall(PetscFree2(p->dual, p->dualSave));
   PetscCall(PetscFree2(p->dualYield, p->dualYieldJ));
   PetscCall(PetscFree(p->yieldMap));
@@ -443,6 +445,7 @@ PetscErrorCode SlumpProblemSetFromOptions(SlumpProblem prob)
     prob->dualWanted    = k == 1 ? PETSC_TRUE : PETSC_FALSE;
     prob->dualWantedSet = PETSC_TRUE;
   }
+  PetscCall(SlumpProblemLinearSetFromOptions(prob));
   PetscFunctionReturn(0);
 }
 
@@ -764,6 +767,8 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
   PetscFunctionBeginUser;
   PetscCheck(prob->dm, prob->comm, PETSC_ERR_ORDER, "Set a mesh before SlumpProblemSetUp()");
   if (prob->setup) PetscFunctionReturn(0);
+  PetscCheck(!prob->linIterative || (prob->extraField < 0 && prob->formulation != SLUMP_FORMULATION_TRANSPORT), prob->comm, PETSC_ERR_USER_INPUT, "-linear_solver iterative is for the single-phase velocity-pressure and anti-plane scenes; scenes with a level set need -linear_solver direct");
+  PetscCheck(!prob->linIterative || !prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || prob->schurPre == SLUMP_SCHUR_PRE_SELFP, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp");
   PetscCall(SlumpRheologyCheck(prob->rheo));
   if (prob->axis >= 0) {
     PetscInt dim;

@@ -86,6 +86,7 @@ PetscErrorCode SlumpProblemJacobian(SlumpProblem prob, PetscReal t, Vec X, Vec X
   PetscCall(FillLocal(prob, t, X, Xdot));
   if (prob->petscAssembly) PetscCall(DMPlexTSComputeIJacobianFEM(prob->dm, t, prob->locX, prob->locXdot, shift, J, J, prob));
   else PetscCall(SlumpAssembleJacobian(prob, t, prob->locX, prob->locXdot, shift, J));
+  if (prob->Sp) PetscCall(SlumpAssembleSchurMass(prob, t, prob->locX, prob->locXdot, shift, prob->Sp));
   prob->njac++;
   PetscFunctionReturn(0);
 }

@@ -416,6 +416,11 @@ PETSC_EXTERN PetscErrorCode SlumpFieldWriterDestroy(SlumpFieldWriter *w);
 /* A KSP as a direct solver: preonly + LU (MUMPS when PETSc has it), then
    the options database under the KSP's prefix. */
 PETSC_EXTERN PetscErrorCode SlumpKSPSetDirect(KSP ksp);
+/* The KSP of the problem's Newton steps: direct (SlumpKSPSetDirect) or, with
+   -linear_solver iterative, Krylov + multigrid (core/linear.c) */
+PETSC_EXTERN PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp);
+/* true with -linear_solver iterative and -linear_forcing eisenstat_walker */
+PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearForcing(SlumpProblem prob, PetscBool *ew);
 
 /* Make a directory and its parents (rank 0; collective). */
 PETSC_EXTERN PetscErrorCode SlumpMakeDirectory(MPI_Comm comm, const char dir[]);

@@ -90,7 +90,25 @@ struct _n_SlumpProblem {
   /* pressure reference point (closed boxes) */
   PetscBool     pinSet;
   PetscReal     pinX[3];
+  /* linear algebra (core/linear.c): -linear_solver iterative; for the
+     velocity-pressure formulation the Schur preconditioner Sp (pressure
+     mass weighted by 1 / (eta + m |K|), assembled with every Jacobian) on
+     the pressure sub-DM dmP, whose closure indices pidx are cached */
+  PetscBool     linIterative;
+  PetscInt      schurPre;   /* SLUMP_SCHUR_PRE_* */
+  PetscBool     linForcing; /* Eisenstat-Walker tolerances in KINSOL's Newton */
+  DM            dmP;
+  Mat           Sp;
+  PetscInt     *pidx;
+  IS            isU, isP;
+  MatNullSpace  nearNull;
 };
+
+enum { SLUMP_SCHUR_PRE_MASS, SLUMP_SCHUR_PRE_SELFP };
+PETSC_INTERN PetscErrorCode SlumpProblemLinearDestroy(SlumpProblem);
+PETSC_INTERN PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem);
+/* the viscosity-weighted pressure mass matrix (assembly.c) */
+PETSC_INTERN PetscErrorCode SlumpAssembleSchurMass(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat Sp);
 
 PETSC_INTERN PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem);
 /* assembly.c */

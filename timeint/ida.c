@@ -274,7 +274,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   user.prob = ti->prob;
   PetscCall(SlumpProblemCreateMatrix(ti->prob, &user.J));
   A  = SlumpSUNMatCreate(user.J, ctx);
-  LS = SlumpSUNLinSolCreate(comm, user.J, ctx);
+  LS = SlumpSUNLinSolCreate(ti->prob, user.J, ctx);
   PetscCheck(A && LS, comm, PETSC_ERR_LIB, "Cannot create the KSP-backed linear solver");
   mem = IDACreate(ctx);
   PetscCheck(mem, comm, PETSC_ERR_LIB, "IDACreate failed");

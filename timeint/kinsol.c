@@ -100,8 +100,13 @@ PetscErrorCode SlumpImplicitSolverCreate(SlumpProblem prob, Vec X, SlumpImplicit
   s->nscale = N_VMake_Petsc(s->scale, s->sunctx);
   PetscCall(SlumpProblemCreateMatrix(prob, &s->J));
   s->A  = SlumpSUNMatCreate(s->J, s->sunctx);
-  s->LS = SlumpSUNLinSolCreate(s->comm, s->J, s->sunctx);
+  s->LS = SlumpSUNLinSolCreate(prob, s->J, s->sunctx);
   PetscCheck(s->A && s->LS, s->comm, PETSC_ERR_LIB, "Cannot create the KSP-backed linear solver");
+  {
+    PetscBool ew;
+    PetscCall(SlumpProblemGetLinearForcing(prob, &ew));
+    PetscCall(SlumpSUNLinSolSetForcing(s->LS, ew));
+  }
   s->kmem = KINCreate(s->sunctx);
   PetscCheck(s->kmem, s->comm, PETSC_ERR_LIB, "KINCreate failed");
   PetscCheck(!KINInit(s->kmem, KinFunc, s->nu), s->comm, PETSC_ERR_LIB, "KINInit failed");

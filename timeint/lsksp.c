@@ -54,6 +54,11 @@ typedef struct {
   void             *ida_mem;   /* exact Newton: re-assemble at IDA's iterate */
   SlumpLSAssembleFn assemble;
   void             *actx;
+  /* inexact Newton (KINSOL, -linear_forcing eisenstat_walker): the relative
+     tolerance of each solve from the decrease of the right-hand side (the
+     residual), Eisenstat and Walker's choice 2 with its safeguard */
+  PetscBool         forcing;
+  PetscReal         bprev, eta;
 } LSContent;
 
 static SUNLinearSolver_Type LSGetType(SUNLinearSolver S)
@@ -90,6 +95,20 @@ static PetscErrorCode LSSolve_Private(LSContent *c, Vec x, Vec b, PetscBool *ok)
   KSPConvergedReason reason;
   PetscInt           its;
   PetscFunctionBeginUser;
+  if (c->forcing) {
+    const PetscReal gamma = 0.9, alpha = 2.0, etamax = 1e-2, etamin = 1e-10;
+    PetscReal       bn, eta;
+    PetscCall(VecNorm(b, NORM_2, &bn));
+    if (c->bprev <= 0.0) eta = etamax;
+    else {
+      const PetscReal safe = gamma * PetscPowReal(c->eta, alpha);
+      eta = gamma * PetscPowReal(bn / c->bprev, alpha);
+      if (safe > 0.1) eta = PetscMax(eta, safe);
+    }
+    c->eta   = PetscMin(etamax, PetscMax(etamin, eta));
+    c->bprev = bn;
+    PetscCall(KSPSetTolerances(c->ksp, c->eta, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
+  }
   PetscCall(KSPSolve(c->ksp, b, x));
   PetscCall(KSPGetConvergedReason(c->ksp, &reason));
   PetscCall(KSPGetIterationNumber(c->ksp, &its));
@@ -152,7 +171,7 @@ static int LSFree(SUNLinearSolver S)
   return 0;
 }
 
-SUNLinearSolver SlumpSUNLinSolCreate(MPI_Comm comm, Mat J, SUNContext ctx)
+SUNLinearSolver SlumpSUNLinSolCreate(SlumpProblem prob, Mat J, SUNContext ctx)
 {
   SUNLinearSolver S = SUNLinSolNewEmpty(ctx);
   LSContent      *c = (LSContent *)calloc(1, sizeof(LSContent));
@@ -167,8 +186,8 @@ SUNLinearSolver SlumpSUNLinSolCreate(MPI_Comm comm, Mat J, SUNContext ctx)
   S->ops->lastflag    = LSLastFlag;
   S->ops->free        = LSFree;
   c->J                = J;
-  if (KSPCreate(comm, &c->ksp)) return NULL;
-  if (SlumpKSPSetDirect(c->ksp)) return NULL;
+  if (KSPCreate(PetscObjectComm((PetscObject)J), &c->ksp)) return NULL;
+  if (SlumpProblemConfigureKSP(prob, c->ksp)) return NULL;
   return S;
 }
 
@@ -185,6 +204,15 @@ PetscErrorCode SlumpSUNLinSolGetKSP(SUNLinearSolver LS, KSP *ksp)
 {
   PetscFunctionBeginUser;
   *ksp = ((LSContent *)LS->content)->ksp;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSUNLinSolSetForcing(SUNLinearSolver LS, PetscBool on)
+{
+  LSContent *c = (LSContent *)LS->content;
+  PetscFunctionBeginUser;
+  c->forcing = on;
+  c->bprev   = -1.0;
   PetscFunctionReturn(0);
 }
 

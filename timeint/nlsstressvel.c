@@ -213,7 +213,7 @@ PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem prob, Vec X, P
   c->ndel = N_VMake_Petsc(c->del, ctx);
   PetscCall(SlumpProblemCreateMatrix(prob, &c->J));
   PetscCall(KSPCreate(comm, &c->ksp));
-  PetscCall(SlumpKSPSetDirect(c->ksp));
+  PetscCall(SlumpProblemConfigureKSP(prob, c->ksp));
   NLS->content              = c;
   SlumpSUNNonlinSolSetStageOps(NLS);
   NLS->ops->solve           = SVSolve;

@@ -11,12 +11,14 @@
 /* A SUNMatrix that only carries a PETSc Mat (assembled by the problem). */
 PETSC_INTERN SUNMatrix       SlumpSUNMatCreate(Mat J, SUNContext ctx);
 /* A direct SUNLinearSolver that solves with a PETSc KSP on that Mat. */
-PETSC_INTERN SUNLinearSolver SlumpSUNLinSolCreate(MPI_Comm comm, Mat J, SUNContext ctx);
+PETSC_INTERN SUNLinearSolver SlumpSUNLinSolCreate(SlumpProblem prob, Mat J, SUNContext ctx);
 PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetCounts(SUNLinearSolver LS, PetscInt *nsolves, PetscInt *nits);
 PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetKSP(SUNLinearSolver LS, KSP *ksp);
 /* Exact Newton inside IDA: before each solve, re-assemble J at IDA's current
    iterate (IDAGetNonlinearSystemData) with the current cj. */
 typedef PetscErrorCode (*SlumpLSAssembleFn)(void *ctx, PetscReal t, Vec y, Vec yp, PetscReal cj);
+/* inexact Newton: Eisenstat-Walker relative tolerances (KINSOL) */
+PETSC_INTERN PetscErrorCode  SlumpSUNLinSolSetForcing(SUNLinearSolver LS, PetscBool on);
 PETSC_INTERN PetscErrorCode  SlumpSUNLinSolSetExactNewton(SUNLinearSolver LS, void *ida_mem, SlumpLSAssembleFn fn, void *ctx);
 /* Convert a PETSc error code at a SUNDIALS callback boundary: 0 ok, <0 fatal. */
 PETSC_INTERN int             SlumpSundialsStatus(PetscErrorCode ierr);
