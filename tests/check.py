@@ -755,6 +755,74 @@ def test_duct_cessation():
     ke_never_increases(series(d), "Bingham duct")
 
 
+def linear_iterative_poiseuille(w, ranks_iter=1):
+    """Steady Bingham Poiseuille (m 1e2 -> 1e4, 8 x 32, Newton to 1e-12):
+    LU on one rank against -linear_solver iterative (both Schur
+    preconditioners) on ranks_iter ranks: diagnostics equal to 1e-8
+    relative (the L2 error's difference relative to the velocity's norm)."""
+    opts = ["-rheology_papanastasiou_m", "1e4", "-steady_continuation_start", "1e2", "-output_fields", "0", "-newton_rtol", "1e-12"]
+    run("poiseuille", opts, os.path.join(w, "direct"))
+    ref = summary(os.path.join(w, "direct"))
+    for pre in ("mass", "selfp"):
+        d = os.path.join(w, "iterative_" + pre)
+        run("poiseuille", opts + ["-linear_solver", "iterative", "-stokes_schur_pre", pre], d, ranks=ranks_iter)
+        s = summary(d)
+        print("Poiseuille, Schur pre %s on %d rank(s): %d Newton (LU %d), %d Krylov iterations" % (pre, s["ranks"], s["newton_its"], ref["newton_its"], s["lin_its"]))
+        for k in ("kinetic_energy", "mean_shear_rate", "flow_rate", "err_u_l2"):
+            # the error's change is bounded by that of the velocity: relative to its norm
+            rel = abs(s[k] - ref[k]) / max(abs(ref["norm_u_l2" if k == "err_u_l2" else k]), 1e-300)
+            print("  %-16s LU %.12e  iterative %.12e  rel diff %.2e" % (k, ref[k], s[k], rel))
+            if not rel <= 1e-8:
+                fail("%s (%s): iterative and LU expected equal to 1e-8 relative, got %g" % (k, pre, rel))
+
+
+def linear_iterative_arrest(w, scene, opts, ranks_iter=1):
+    """Arrest time of a cessation: LU on one rank against -linear_solver
+    iterative on ranks_iter ranks, within 10 rtol."""
+    run(scene, opts, os.path.join(w, scene + "_direct"))
+    run(scene, opts + ["-linear_solver", "iterative"], os.path.join(w, scene + "_iterative"), ranks=ranks_iter)
+    a, b = summary(os.path.join(w, scene + "_direct")), summary(os.path.join(w, scene + "_iterative"))
+    rel = abs(a["t_arrest"] - b["t_arrest"]) / a["t_arrest"]
+    print("%s: arrest LU %.8f, iterative (%d rank(s)) %.8f, rel diff %.2e (rtol %g); %d Newton, %d Krylov iterations (%.1f per Newton iteration)" % (
+        scene, a["t_arrest"], b["ranks"], b["t_arrest"], rel, a["rtol"], b["newton_its"], b["lin_its"], b["lin_its"] / max(b["newton_its"], 1)))
+    if not a["t_arrest"] > 0 or not rel <= 10 * a["rtol"]:
+        fail("%s: arrest times differ by %g relative, expected <= 10 rtol = %g" % (scene, rel, 10 * a["rtol"]))
+
+
+def test_linear_iterative():
+    """-linear_solver iterative reproduces the direct (MUMPS LU) results.
+    (1) Steady Bingham Poiseuille: equal to 1e-8 (linear_iterative_poiseuille).
+    (2) Newtonian Poiseuille on 8 x 32, 16 x 64, 32 x 128 cells (2 313 to
+    36 897 unknowns) with a fixed Krylov tolerance of 1e-10: Krylov
+    iterations per solve at most 40 and growing by at most 25 % over the
+    16-fold refinement (measured 27, 28, 29). (3) Arrest times of
+    duct_cessation (anti-plane: GMRES + BoomerAMG) and of cavity_cessation
+    on 8 x 8 cells (enclosed Stokes with inertia, the pressure pinned) within
+    10 rtol of LU's."""
+    w = work("linear_iterative")
+    linear_iterative_poiseuille(w)
+    its = []
+    for ny in (32, 64, 128):
+        d = os.path.join(w, "newtonian_%d" % ny)
+        run("poiseuille", ["-rheology_yield_stress", "0", "-mesh_nx", str(ny // 4), "-mesh_ny", str(ny), "-output_fields", "0",
+                           "-linear_solver", "iterative", "-linear_forcing", "fixed"], d)
+        s = summary(d)
+        its.append(s["lin_its"] / s["lin_solves"])
+        print("Newtonian Poiseuille %d x %d, %d unknowns: %.1f Krylov iterations per solve" % (ny // 4, ny, s["unknowns"], its[-1]))
+    if max(its) > 40 or its[-1] > 1.25 * its[0]:
+        fail("Krylov iterations per solve expected <= 40 and growing by <= 25 %%, got %s" % its)
+    linear_iterative_arrest(w, "duct_cessation", ["-output_fields", "0"])
+    linear_iterative_arrest(w, "cavity_cessation", ["-mesh_nx", "8", "-mesh_ny", "8", "-output_fields", "0"])
+
+
+def test_linear_iterative_parallel():
+    """-linear_solver iterative on 2 ranks against LU on 1: steady Bingham
+    Poiseuille equal to 1e-8, duct_cessation's arrest time within 10 rtol."""
+    w = work("linear_iterative_parallel")
+    linear_iterative_poiseuille(w, ranks_iter=2)
+    linear_iterative_arrest(w, "duct_cessation", ["-output_fields", "0"], ranks_iter=2)
+
+
 STOKES_LAMBDA1_UNIT_SQUARE = 52.3446911  # first Stokes (clamped-plate buckling) eigenvalue of the unit square
 
 
@@ -998,6 +1066,9 @@ def test_gmsh():
 INPUT_CASES = [
     # (name, args, word that the one-sentence message must contain)
     ("unknown_scene", ["-scene", "no_such_scene"], "-scene"),
+    ("iterative_levelset", ["-scene", "dam_break", "-linear_solver", "iterative"], "-linear_solver"),
+    ("iterative_unknown", ["-scene", "poiseuille", "-linear_solver", "lu"], "-linear_solver"),
+    ("schur_mass_petsc_assembly", ["-scene", "poiseuille", "-linear_solver", "iterative", "-assembly", "petsc"], "-stokes_schur_pre"),
     ("unknown_rheology", ["-scene", "poiseuille", "-rheology_type", "no_such_model"], "-rheology_type"),
     ("unknown_reinit", ["-scene", "levelset_rotation", "-reinit", "no_such_method"], "-reinit"),
     ("levelset_degree", ["-scene", "levelset_rotation", "-levelset_degree", "3"], "-levelset_degree"),

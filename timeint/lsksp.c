@@ -56,7 +56,8 @@ typedef struct {
   void             *actx;
   /* inexact Newton (KINSOL, -linear_forcing eisenstat_walker): the relative
      tolerance of each solve from the decrease of the right-hand side (the
-     residual), Eisenstat and Walker's choice 2 with its safeguard */
+     residual), Eisenstat and Walker's choice 2 with its safeguard, tightened
+     tenfold whenever the residual fell by less than half */
   PetscBool         forcing;
   PetscReal         bprev, eta;
 } LSContent;
@@ -100,7 +101,12 @@ static PetscErrorCode LSSolve_Private(LSContent *c, Vec x, Vec b, PetscBool *ok)
     PetscReal       bn, eta;
     PetscCall(VecNorm(b, NORM_2, &bn));
     if (c->bprev <= 0.0) eta = etamax;
-    else {
+    else if (bn > 0.5 * c->bprev) {
+      /* slow progress: the inexact steps are what stalls (a line search
+         that cuts them, or an ill-conditioned system whose small linear
+         residual is a large error): tighten */
+      eta = 0.1 * c->eta;
+    } else {
       const PetscReal safe = gamma * PetscPowReal(c->eta, alpha);
       eta = gamma * PetscPowReal(bn / c->bprev, alpha);
       if (safe > 0.1) eta = PetscMax(eta, safe);
