@@ -5,7 +5,19 @@ between assembly (residual, Jacobian, diagnostic integrals: our cell loop)
 and the linear solves (PCSetUp = LU factorisation, KSPSolve), from -log_view.
 
 usage: python3 cases/bench.py [--slump build/slump] [--out docs/performance.md] [--quick]
+       python3 cases/bench.py --linear [--max-unknowns 1.1e6] [--out table.md]
+
+--linear: LU (MUMPS) against -linear_solver iterative on poiseuille (steady
+Bingham, Stokes), cavity (steady Bingham lid-driven, Stokes) and
+duct_cessation (anti-plane, to t = 0.005) from ~2e3 unknowns up to
+--max-unknowns, each run's time per Newton iteration, Krylov iterations per
+solve and peak memory, with the exponent of the per-Newton time fitted
+against the number of unknowns (least squares on log-log, runs with at
+least 1e4 unknowns); then Krylov iterations per solve against Papanastasiou
+m (1e2 ... 1e6) on poiseuille 32 x 128 with a fixed Krylov tolerance.
+LU runs stop at --max-lu-unknowns.
 """
+import math
 import argparse
 import csv
 import os
@@ -26,9 +38,11 @@ def logview_times(text):
     return t
 
 
-def run(slump, scene, opts):
+def run(slump, scene, opts, ranks=1, mpiexec="mpiexec"):
     with tempfile.TemporaryDirectory() as d:
         cmd = [slump, "-scene", scene, "-output_dir", d, "-quiet", "-output_fields", "0", "-log_view"] + opts
+        if ranks > 1:
+            cmd = [mpiexec, "--oversubscribe", "--allow-run-as-root", "-n", str(ranks)] + cmd
         p = subprocess.run(cmd, capture_output=True, text=True, check=True)
         with open(os.path.join(d, "summary.csv")) as f:
             s = next(csv.DictReader(f))
@@ -39,12 +53,93 @@ def run(slump, scene, opts):
     return s, asm + petsc_asm, lin
 
 
+def fit_exponent(points):
+    """Least-squares slope of log y against log x."""
+    if len(points) < 2:
+        return float("nan")
+    lx = [math.log(x) for x, _ in points]
+    ly = [math.log(y) for _, y in points]
+    mx, my = sum(lx) / len(lx), sum(ly) / len(ly)
+    sxx = sum((x - mx) ** 2 for x in lx)
+    return sum((x - mx) * (y - my) for x, y in zip(lx, ly)) / sxx if sxx > 0 else float("nan")
+
+
+def linear_cases(max_n, max_lu):
+    """(scene, label, options, unknowns estimate) of the --linear benchmark."""
+    out = []
+    for ny in (32, 64, 128, 256, 512, 672):
+        n = 9 * (ny // 4) * ny
+        out.append(("poiseuille", "%d x %d" % (ny // 4, ny), n, ["-mesh_nx", str(ny // 4), "-mesh_ny", str(ny), "-rheology_papanastasiou_m", "1e4", "-steady_continuation_start", "1e2"]))
+    for nc in (16, 32, 64, 128):
+        out.append(("cavity", "%d x %d" % (nc, nc), 9 * nc * nc, ["-mesh_nx", str(nc), "-mesh_ny", str(nc)]))
+    for nd in (16, 32, 64, 128, 256, 512):
+        out.append(("duct_cessation", "%d x %d" % (nd, nd), (2 * nd + 1) ** 2, ["-mesh_nx", str(nd), "-mesh_ny", str(nd), "-time_final", "0.005"]))
+    rows = []
+    for scene, label, n, opts in out:
+        if n > max_n:
+            continue
+        if n <= max_lu:
+            rows.append((scene, label, "direct", opts + ["-linear_solver", "direct"]))
+        rows.append((scene, label, "iterative", opts + ["-linear_solver", "iterative"]))
+    return rows
+
+
+def linear_bench(a):
+    head = "| scene | mesh | unknowns | linear solver | ranks | Newton | Krylov per solve | wall s | s per Newton | linear s per Newton | peak MB |"
+    lines = [head, "|" + "---|" * 11]
+    print("\n".join(lines), flush=True)
+    series = {}
+    for scene, label, kind, opts in linear_cases(a.max_unknowns, a.max_lu_unknowns):
+        try:
+            s, asm, lin = run(a.slump, scene, opts, a.ranks, a.mpiexec)
+        except subprocess.CalledProcessError as e:
+            row = "| %s | %s | | %s | %d | failed: %s | | | | | |" % (scene, label, kind, a.ranks, ((e.stderr or "").strip().splitlines() or [""])[-1])
+            print(row, flush=True)
+            lines.append(row)
+            continue
+        n, newton = int(s["unknowns"]), max(int(s["newton_its"]), 1)
+        per = float(s["wall_time"]) / newton
+        kry = float(s["lin_its"]) / newton  # one linear solve per Newton iteration
+        row = "| %s | %s | %d | %s | %d | %d | %.1f | %.2f | %.4f | %.4f | %.0f |" % (scene, label, n, kind, a.ranks, newton, kry, float(s["wall_time"]), per, lin / newton, float(s["peak_memory_mb"]))
+        print(row, flush=True)
+        lines.append(row)
+        if n >= 1e4:
+            series.setdefault((scene, kind), []).append((n, per, lin / newton))
+    lines += ["", "| scene | linear solver | exponent of s per Newton | exponent of linear s per Newton | runs |", "|---|---|---|---|---|"]
+    for (scene, kind), pts in series.items():
+        lines.append("| %s | %s | %.2f | %.2f | %d |" % (scene, kind, fit_exponent([(n, p) for n, p, _ in pts]), fit_exponent([(n, l) for n, _, l in pts]), len(pts)))
+    # Krylov iterations against the regularisation
+    lines += ["", "| poiseuille 32 x 128, m | Newton | Krylov per solve (fixed tolerance 1e-10) | wall s |", "|---|---|---|---|"]
+    for m in ("1e2", "1e3", "1e4", "1e5", "1e6"):
+        opts = ["-mesh_nx", "32", "-mesh_ny", "128", "-rheology_papanastasiou_m", m, "-steady_continuation_start", "1e2", "-linear_solver", "iterative", "-linear_forcing", "fixed"]
+        try:
+            s, _, _ = run(a.slump, "poiseuille", opts, a.ranks, a.mpiexec)
+        except subprocess.CalledProcessError as e:
+            lines.append("| %s | failed: %s | | |" % (m, ((e.stderr or "").strip().splitlines() or [""])[-1]))
+            print(lines[-1], flush=True)
+            continue
+        lines.append("| %s | %d | %.1f | %.2f |" % (m, int(s["newton_its"]), float(s["lin_its"]) / max(float(s["newton_its"]), 1.0), float(s["wall_time"])))
+        print(lines[-1], flush=True)
+    print("\n".join(lines[lines.index("") :]))
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--slump", default="build/slump")
     ap.add_argument("--out", default=None)
     ap.add_argument("--quick", action="store_true", help="smaller meshes only")
+    ap.add_argument("--linear", action="store_true", help="LU against -linear_solver iterative, up to --max-unknowns")
+    ap.add_argument("--max-unknowns", type=float, default=1.1e6)
+    ap.add_argument("--max-lu-unknowns", type=float, default=3e5)
+    ap.add_argument("--ranks", type=int, default=1)
+    ap.add_argument("--mpiexec", default="mpiexec")
     a = ap.parse_args()
+    if a.linear:
+        linear_bench(a)
+        return
     cases = []
     ps = (32, 64, 128) if a.quick else (32, 64, 128, 256)
     for ny in ps:

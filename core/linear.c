@@ -6,8 +6,9 @@
  *     residual is the true one), with hypre BoomerAMG;
  *   velocity-pressure: FGMRES with a block upper-triangular Schur
  *     preconditioner (PCFIELDSPLIT), the velocity block by one V-cycle of
- *     smoothed aggregation (GAMG, the rigid-body modes as near null space),
- *     the Schur complement by the viscosity-weighted pressure mass matrix
+ *     BoomerAMG (strong threshold 0.7; GAMG without hypre, the rigid-body
+ *     modes as its near null space), the Schur complement by the
+ *     viscosity-weighted pressure mass matrix
  *     assembled with every Jacobian (SlumpAssembleSchurMass), or by PETSc's
  *     B diag(A)^-1 B^T (-stokes_schur_pre selfp).
  *
@@ -24,9 +25,9 @@ PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
   PetscInt    k       = prob->linIterative ? 1 : 0, sp = prob->schurPre, fo = prob->linForcing ? 1 : 0;
   PetscFunctionBeginUser;
   PetscOptionsBegin(prob->comm, NULL, "Linear solver", "SlumpProblem");
-  PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with GAMG for velocity-pressure)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
+  PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with BoomerAMG on the velocity block for velocity-pressure)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
   PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|)) or selfp (B diag(A)^-1 B^T)", "SlumpProblemConfigureKSP", pres, 2, pres[sp], &sp, NULL));
-  PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-2) or fixed (-ksp_rtol); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
+  PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: fixed (-ksp_rtol, default 1e-10) or eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-4); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
   PetscOptionsEnd();
   prob->linForcing   = fo == 1 ? PETSC_TRUE : PETSC_FALSE;
   prob->linIterative = k == 1 ? PETSC_TRUE : PETSC_FALSE;
@@ -129,8 +130,16 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
        scalar 2-D Laplacians; measured on poiseuille with m 1e4, 36-45
        Krylov iterations per Newton step from 2e3 to 4e4 unknowns against
        88-195 with GAMG) */
-    PetscCall(SetDefault(ksp, "fieldsplit_u_pc_type", "hypre"));
-    PetscCall(SetDefault(ksp, "fieldsplit_u_pc_hypre_boomeramg_strong_threshold", "0.7"));
+    {
+      const char *prefix;
+      char        name[256], type[64] = "hypre";
+      PetscBool   set;
+      PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+      PetscCall(PetscSNPrintf(name, sizeof(name), "-%sfieldsplit_u_pc_type", prefix ? prefix : ""));
+      PetscCall(PetscOptionsGetString(NULL, NULL, name, type, sizeof(type), &set));
+      PetscCall(SetDefault(ksp, "fieldsplit_u_pc_type", "hypre"));
+      if (!strcmp(type, "hypre")) PetscCall(SetDefault(ksp, "fieldsplit_u_pc_hypre_boomeramg_strong_threshold", "0.7"));
+    }
 #else
     PetscCall(SetDefault(ksp, "fieldsplit_u_pc_type", "gamg"));
 #endif

@@ -21,7 +21,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->extraField     = -1;
   p->axis           = -1;
   p->yieldedOverride = -1.0;
-  p->linForcing     = PETSC_TRUE;
+  p->linForcing     = PETSC_FALSE;
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
   PetscFunctionReturn(0);

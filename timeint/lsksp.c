@@ -97,7 +97,7 @@ static PetscErrorCode LSSolve_Private(LSContent *c, Vec x, Vec b, PetscBool *ok)
   PetscInt           its;
   PetscFunctionBeginUser;
   if (c->forcing) {
-    const PetscReal gamma = 0.9, alpha = 2.0, etamax = 1e-2, etamin = 1e-10;
+    const PetscReal gamma = 0.9, alpha = 2.0, etamax = 1e-4, etamin = 1e-10;
     PetscReal       bn, eta;
     PetscCall(VecNorm(b, NORM_2, &bn));
     if (c->bprev <= 0.0) eta = etamax;
