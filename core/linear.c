@@ -17,21 +17,29 @@
  * hypre ... still override. */
 #include "slumpimpl.h"
 
+#if defined(PETSC_HAVE_HYPRE)
+  #define SLUMP_AMG PCHYPRE
+#else
+  #define SLUMP_AMG PCGAMG
+#endif
+
 PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
 {
   const char *kinds[] = {"direct", "iterative"};
   const char *pres[]  = {"mass", "selfp"};
   const char *forc[]  = {"fixed", "eisenstat_walker"};
   PetscInt    k       = prob->linIterative ? 1 : 0, sp = prob->schurPre, fo = prob->linForcing ? 1 : 0;
+  PetscBool   spSet   = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(prob->comm, NULL, "Linear solver", "SlumpProblem");
   PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with BoomerAMG on the velocity block for velocity-pressure)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
-  PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|)) or selfp (B diag(A)^-1 B^T)", "SlumpProblemConfigureKSP", pres, 2, pres[sp], &sp, NULL));
+  PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|); the default without a level set) or selfp (B diag(A)^-1 B^T by BoomerAMG; the default with a level set)", "SlumpProblemConfigureKSP", pres, 2, pres[sp], &sp, &spSet));
   PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: fixed (-ksp_rtol, default 1e-10) or eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-4); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
   PetscOptionsEnd();
   prob->linForcing   = fo == 1 ? PETSC_TRUE : PETSC_FALSE;
   prob->linIterative = k == 1 ? PETSC_TRUE : PETSC_FALSE;
   prob->schurPre     = sp;
+  prob->schurPreSet  = (PetscBool)(prob->schurPreSet || spSet);
   PetscFunctionReturn(0);
 }
 
@@ -50,6 +58,10 @@ PetscErrorCode SlumpProblemLinearDestroy(SlumpProblem prob)
   PetscCall(PetscFree(prob->pidx));
   PetscCall(ISDestroy(&prob->isU));
   PetscCall(ISDestroy(&prob->isP));
+  PetscCall(ISDestroy(&prob->isF));
+  PetscCall(ISDestroy(&prob->isX));
+  PetscCall(ISDestroy(&prob->isUF));
+  PetscCall(ISDestroy(&prob->isPF));
   PetscCall(MatNullSpaceDestroy(&prob->nearNull));
   PetscFunctionReturn(0);
 }
@@ -91,6 +103,103 @@ static PetscErrorCode StokesSetUp(SlumpProblem prob)
   PetscFunctionReturn(0);
 }
 
+/* The positions of a's indices within b, numbered globally in the space b
+   spans (each rank's part of b follows the previous ranks'). */
+static PetscErrorCode EmbedGlobal(IS a, IS b, IS *ab)
+{
+  IS              loc;
+  const PetscInt *ix;
+  PetscInt        n, nb, off = 0, *gx;
+  MPI_Comm        comm;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectGetComm((PetscObject)b, &comm));
+  PetscCall(ISEmbed(a, b, PETSC_TRUE, &loc));
+  PetscCall(ISGetLocalSize(b, &nb));
+  PetscCallMPI(MPI_Exscan(&nb, &off, 1, MPIU_INT, MPI_SUM, comm));
+  {
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (!rank) off = 0; /* MPI_Exscan leaves rank 0's result undefined */
+  }
+  PetscCall(ISGetLocalSize(loc, &n));
+  PetscCall(ISGetIndices(loc, &ix));
+  PetscCall(PetscMalloc1(n, &gx));
+  for (PetscInt i = 0; i < n; ++i) gx[i] = ix[i] + off;
+  PetscCall(ISRestoreIndices(loc, &ix));
+  PetscCall(ISDestroy(&loc));
+  PetscCall(ISCreateGeneral(comm, n, gx, PETSC_OWN_POINTER, ab));
+  PetscFunctionReturn(0);
+}
+
+/* With a level set: the flow block (every field but the level set) and the
+   level set's unknowns; velocity and pressure numbered within the flow. */
+static PetscErrorCode LevelSetSetUp(SlumpProblem prob)
+{
+  PetscInt flow[2] = {0, 1}, nflow = prob->formulation == SLUMP_FORMULATION_PLANE ? 2 : 1, x = prob->extraField;
+  PetscFunctionBeginUser;
+  if (prob->isF) PetscFunctionReturn(0);
+  PetscCall(DMCreateSubDM(prob->dm, nflow, flow, &prob->isF, NULL));
+  PetscCall(DMCreateSubDM(prob->dm, 1, &x, &prob->isX, NULL));
+  if (prob->formulation == SLUMP_FORMULATION_PLANE) {
+    PetscCall(EmbedGlobal(prob->isU, prob->isF, &prob->isUF));
+    PetscCall(EmbedGlobal(prob->isP, prob->isF, &prob->isPF));
+    PetscCall(PetscObjectCompose((PetscObject)prob->isUF, "nearnullspace", (PetscObject)prob->nearNull));
+  }
+  PetscFunctionReturn(0);
+}
+
+/* The flow's preconditioner on ksp's PC: BoomerAMG for one scalar velocity;
+   the Schur fieldsplit over the velocity isU and the pressure isP (numbered
+   in ksp's operator) for velocity-pressure. Defaults use ksp's prefix. */
+static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, KSP ksp, IS isU, IS isP)
+{
+  PC pc;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp, &pc));
+  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+#if defined(PETSC_HAVE_HYPRE)
+    PetscCall(PCSetType(pc, PCHYPRE));
+#else
+    PetscCall(PCSetType(pc, PCGAMG));
+#endif
+    PetscFunctionReturn(0);
+  }
+  PetscCall(PCSetType(pc, PCFIELDSPLIT));
+  PetscCall(PCFieldSplitSetIS(pc, "u", isU));
+  PetscCall(PCFieldSplitSetIS(pc, "p", isP));
+  PetscCall(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR));
+  PetscCall(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER));
+  if (prob->schurPre == SLUMP_SCHUR_PRE_MASS) PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, prob->Sp));
+  else PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, NULL));
+  PetscCall(SetDefault(ksp, "fieldsplit_u_ksp_type", "preonly"));
+#if defined(PETSC_HAVE_HYPRE)
+  /* BoomerAMG with a strong threshold of 0.7 (the default 0.25 suits
+     scalar 2-D Laplacians; measured on poiseuille with m 1e4, 36-45
+     Krylov iterations per Newton step from 2e3 to 4e4 unknowns against
+     88-195 with GAMG) */
+  {
+    const char *prefix;
+    char        name[256], type[64] = "hypre";
+    PetscBool   set;
+    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%sfieldsplit_u_pc_type", prefix ? prefix : ""));
+    PetscCall(PetscOptionsGetString(NULL, NULL, name, type, sizeof(type), &set));
+    PetscCall(SetDefault(ksp, "fieldsplit_u_pc_type", "hypre"));
+    /* not with a level set: dam_break (density and viscosity ratios 1e-3,
+       24k unknowns) took 28 Krylov iterations per solve with 0.7, 21 with
+       BoomerAMG's default 0.25 */
+    if (!strcmp(type, "hypre") && prob->extraField < 0) PetscCall(SetDefault(ksp, "fieldsplit_u_pc_hypre_boomeramg_strong_threshold", "0.7"));
+  }
+#else
+  PetscCall(SetDefault(ksp, "fieldsplit_u_pc_type", "gamg"));
+#endif
+  PetscCall(SetDefault(ksp, "fieldsplit_p_ksp_type", "preonly"));
+  /* the weighted mass is spectrally a diagonal; B diag(A)^-1 B^T is a
+     Laplacian (weighted by 1/(rho cj + eta h^-2)) */
+  PetscCall(SetDefault(ksp, "fieldsplit_p_pc_type", prob->schurPre == SLUMP_SCHUR_PRE_MASS ? "jacobi" : SLUMP_AMG));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
 {
   PC pc;
@@ -99,55 +208,51 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
     PetscCall(SlumpKSPSetDirect(ksp));
     PetscFunctionReturn(0);
   }
-  PetscCheck(prob->extraField < 0 && prob->formulation != SLUMP_FORMULATION_TRANSPORT, prob->comm, PETSC_ERR_USER_INPUT, "-linear_solver iterative is for the single-phase velocity-pressure and anti-plane scenes; scenes with a level set need -linear_solver direct");
   PetscCheck(!prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || prob->schurPre == SLUMP_SCHUR_PRE_SELFP, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp");
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(SetDefault(ksp, "ksp_rtol", "1e-10"));
   /* no cap below PETSc's 10000: with 1000 one solve of the steady Bingham
      cavity on 128 x 128 cells (147k unknowns, m 1e4) ran out and KINSOL failed */
   PetscCall(SetDefault(ksp, "ksp_max_it", "10000"));
-  if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+  if (prob->formulation == SLUMP_FORMULATION_TRANSPORT) {
+    /* only the level set: cj M + advection (SUPG), nonsymmetric and
+       diagonally dominant at the integrator's steps: GMRES with ILU(0)
+       (block Jacobi across ranks) */
     PetscCall(KSPSetType(ksp, KSPGMRES));
     PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
-    PetscCall(KSPGMRESSetRestart(ksp, 100));
-#if defined(PETSC_HAVE_HYPRE)
-    PetscCall(PCSetType(pc, PCHYPRE));
-#else
-    PetscCall(PCSetType(pc, PCGAMG));
-#endif
-  } else {
-    PetscCall(StokesSetUp(prob));
+    PetscCall(PCSetType(pc, PCBJACOBI));
+  } else if (prob->extraField >= 0) {
+    /* flow and level set: block Gauss-Seidel (the flow, then the level set
+       with the flow's correction), the flow by its own preconditioner, the
+       level set by ILU(0); FGMRES outside */
+    KSP     *sub;
+    PetscInt ns;
+    if (prob->formulation == SLUMP_FORMULATION_PLANE) PetscCall(StokesSetUp(prob));
+    PetscCall(LevelSetSetUp(prob));
     PetscCall(KSPSetType(ksp, KSPFGMRES));
-    PetscCall(KSPGMRESSetRestart(ksp, 100));
     PetscCall(PCSetType(pc, PCFIELDSPLIT));
-    PetscCall(PCFieldSplitSetIS(pc, "u", prob->isU));
-    PetscCall(PCFieldSplitSetIS(pc, "p", prob->isP));
-    PetscCall(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR));
-    PetscCall(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER));
-    if (prob->schurPre == SLUMP_SCHUR_PRE_MASS) PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, prob->Sp));
-    else PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, NULL));
-    PetscCall(SetDefault(ksp, "fieldsplit_u_ksp_type", "preonly"));
-#if defined(PETSC_HAVE_HYPRE)
-    /* BoomerAMG with a strong threshold of 0.7 (the default 0.25 suits
-       scalar 2-D Laplacians; measured on poiseuille with m 1e4, 36-45
-       Krylov iterations per Newton step from 2e3 to 4e4 unknowns against
-       88-195 with GAMG) */
+    PetscCall(PCFieldSplitSetType(pc, PC_COMPOSITE_MULTIPLICATIVE));
+    PetscCall(PCFieldSplitSetIS(pc, "flow", prob->isF));
+    PetscCall(PCFieldSplitSetIS(pc, "levelset", prob->isX));
+    PetscCall(PCFieldSplitGetSubKSP(pc, &ns, &sub));
+    PetscCall(ConfigureFlowPC(prob, sub[0], prob->isUF, prob->isPF));
     {
-      const char *prefix;
-      char        name[256], type[64] = "hypre";
-      PetscBool   set;
-      PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-      PetscCall(PetscSNPrintf(name, sizeof(name), "-%sfieldsplit_u_pc_type", prefix ? prefix : ""));
-      PetscCall(PetscOptionsGetString(NULL, NULL, name, type, sizeof(type), &set));
-      PetscCall(SetDefault(ksp, "fieldsplit_u_pc_type", "hypre"));
-      if (!strcmp(type, "hypre")) PetscCall(SetDefault(ksp, "fieldsplit_u_pc_hypre_boomeramg_strong_threshold", "0.7"));
+      PC pcx;
+      PetscCall(KSPGetPC(sub[1], &pcx));
+      PetscCall(PCSetType(pcx, PCBJACOBI));
     }
-#else
-    PetscCall(SetDefault(ksp, "fieldsplit_u_pc_type", "gamg"));
-#endif
-    PetscCall(SetDefault(ksp, "fieldsplit_p_ksp_type", "preonly"));
-    PetscCall(SetDefault(ksp, "fieldsplit_p_pc_type", "jacobi"));
+    PetscCall(PetscFree(sub));
+  } else {
+    if (prob->formulation == SLUMP_FORMULATION_ANTIPLANE) {
+      PetscCall(KSPSetType(ksp, KSPGMRES));
+      PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
+    } else {
+      PetscCall(StokesSetUp(prob));
+      PetscCall(KSPSetType(ksp, KSPFGMRES));
+    }
+    PetscCall(ConfigureFlowPC(prob, ksp, prob->isU, prob->isP));
   }
+  PetscCall(KSPGMRESSetRestart(ksp, 100));
   PetscCall(KSPSetFromOptions(ksp));
   PetscFunctionReturn(0);
 }

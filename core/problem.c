@@ -767,7 +767,10 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
   PetscFunctionBeginUser;
   PetscCheck(prob->dm, prob->comm, PETSC_ERR_ORDER, "Set a mesh before SlumpProblemSetUp()");
   if (prob->setup) PetscFunctionReturn(0);
-  PetscCheck(!prob->linIterative || (prob->extraField < 0 && prob->formulation != SLUMP_FORMULATION_TRANSPORT), prob->comm, PETSC_ERR_USER_INPUT, "-linear_solver iterative is for the single-phase velocity-pressure and anti-plane scenes; scenes with a level set need -linear_solver direct");
+  /* with a level set the time steps follow the interface and inertia rules
+     the Schur complement (a Laplacian weighted by 1/(rho cj)): the weighted
+     mass needed 500 Krylov iterations per solve on dam_break, selfp 21 */
+  if (!prob->schurPreSet && prob->extraField >= 0) prob->schurPre = SLUMP_SCHUR_PRE_SELFP;
   PetscCheck(!prob->linIterative || !prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || prob->schurPre == SLUMP_SCHUR_PRE_SELFP, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp");
   PetscCall(SlumpRheologyCheck(prob->rheo));
   if (prob->axis >= 0) {

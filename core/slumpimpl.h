@@ -96,11 +96,15 @@ struct _n_SlumpProblem {
      the pressure sub-DM dmP, whose closure indices pidx are cached */
   PetscBool     linIterative;
   PetscInt      schurPre;   /* SLUMP_SCHUR_PRE_* */
+  PetscBool     schurPreSet; /* by the user; else mass, selfp with a level set */
   PetscBool     linForcing; /* Eisenstat-Walker tolerances in KINSOL's Newton */
   DM            dmP;
   Mat           Sp;
   PetscInt     *pidx;
   IS            isU, isP;
+  /* with a level set: the flow unknowns isF and the level set isX (global
+     numbering), velocity and pressure numbered within the flow block */
+  IS            isF, isX, isUF, isPF;
   MatNullSpace  nearNull;
 };
 
