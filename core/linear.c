@@ -32,7 +32,7 @@ PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
   PetscBool   spSet   = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(prob->comm, NULL, "Linear solver", "SlumpProblem");
-  PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with BoomerAMG on the velocity block for velocity-pressure)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
+  PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with BoomerAMG on the velocity block for velocity-pressure; with a level set, block Gauss-Seidel of the flow and the level set by ILU)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
   PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|); the default without a level set) or selfp (B diag(A)^-1 B^T by BoomerAMG; the default with a level set)", "SlumpProblemConfigureKSP", pres, 2, pres[sp], &sp, &spSet));
   PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: fixed (-ksp_rtol, default 1e-10) or eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-4); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
   PetscOptionsEnd();
