@@ -47,6 +47,7 @@ SUNMatrix SlumpSUNMatCreate(Mat J, SUNContext ctx)
 }
 
 typedef struct {
+  SlumpProblem      prob;
   KSP               ksp;
   Mat               J;
   PetscInt          nsolves, nits, last_its;
@@ -78,7 +79,7 @@ static int LSInitialize(SUNLinearSolver S)
 static PetscErrorCode LSSetup_Private(LSContent *c)
 {
   PetscFunctionBeginUser;
-  PetscCall(KSPSetOperators(c->ksp, c->J, c->J));
+  PetscCall(SlumpProblemKSPSetOperators(c->prob, c->ksp, c->J));
   PetscCall(KSPSetUp(c->ksp));
   PetscFunctionReturn(0);
 }
@@ -192,6 +193,7 @@ SUNLinearSolver SlumpSUNLinSolCreate(SlumpProblem prob, Mat J, SUNContext ctx)
   S->ops->lastflag    = LSLastFlag;
   S->ops->free        = LSFree;
   c->J                = J;
+  c->prob             = prob;
   if (KSPCreate(PetscObjectComm((PetscObject)J), &c->ksp)) return NULL;
   if (SlumpProblemConfigureKSP(prob, c->ksp)) return NULL;
   return S;
