@@ -313,12 +313,7 @@ PetscErrorCode SlumpAssembleResidual(SlumpProblem prob, PetscReal t, Vec locX, V
   PetscFunctionReturn(0);
 }
 
-static PetscErrorCode AssembleJacobianTable(SlumpProblem, PetscReal, Vec, Vec, PetscReal, PetscPointJac[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4], PetscBool, Mat);
-
-/* The Jacobian, or with iso the preconditioning matrix of
-   -stokes_velocity_pre isotropic: the same but for the velocity block's
-   viscous part, made isotropic at each quadrature point (IsotropicG3) */
-static PetscErrorCode AssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscBool iso, Mat Jac)
+PetscErrorCode SlumpAssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat Jac)
 {
   PetscDS       ds;
   PetscPointJac g[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4];
@@ -326,7 +321,7 @@ static PetscErrorCode AssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX,
   PetscCall(DMGetDS(prob->dm, &ds));
   for (PetscInt f = 0; f < prob->assembly->Nf; ++f)
     for (PetscInt h = 0; h < prob->assembly->Nf; ++h) PetscCall(PetscDSGetJacobian(ds, f, h, &g[f][h][0], &g[f][h][1], &g[f][h][2], &g[f][h][3]));
-  PetscCall(AssembleJacobianTable(prob, t, locX, locXdot, shift, g, iso, Jac));
+  PetscCall(SlumpAssembleJacobianWith(prob, t, locX, locXdot, shift, g, Jac));
   if (prob->wallFriction) {
     /* solution-dependent natural terms (wall friction): PETSc's face loop */
     PetscInt nb;
@@ -350,59 +345,6 @@ static PetscErrorCode AssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX,
 /* The same with an explicit table of kernels g[test field][trial field][g0..g3]
    (NULL: none), e.g. the Laplacian and mass matrix of the eigenproblem. */
 PetscErrorCode SlumpAssembleJacobianWith(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscPointJac g[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4], Mat Jac)
-{
-  PetscFunctionBeginUser;
-  PetscCall(AssembleJacobianTable(prob, t, locX, locXdot, shift, g, PETSC_FALSE, Jac));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SlumpAssembleJacobian(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat Jac)
-{
-  PetscFunctionBeginUser;
-  PetscCall(AssembleJacobian(prob, t, locX, locXdot, shift, PETSC_FALSE, Jac));
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SlumpAssembleVelocityPre(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat P)
-{
-  PetscFunctionBeginUser;
-  PetscCall(AssembleJacobian(prob, t, locX, locXdot, shift, PETSC_TRUE, P));
-  PetscFunctionReturn(0);
-}
-
-/* The viscous tangent G3 of the velocity block (NcU components, kd
-   directions) replaced by the isotropic eta (grad u + grad u^T), eta the
-   mean of its diagonal entries (exact for a Newtonian or a Picard, secant,
-   viscosity; between the tangent's extreme values for a regularised yield
-   law, whose Newton tangent is strongly anisotropic in and near the plugs) */
-static inline void IsotropicG3(PetscInt dim, PetscInt kd, PetscInt NcU, PetscScalar G3[])
-{
-  PetscReal eta = 0.0;
-  for (PetscInt k = 0; k < dim; ++k)
-    for (PetscInt d = 0; d < dim; ++d) eta += PetscRealPart(G3[((k * NcU + k) * kd + d) * kd + d]);
-  eta /= (PetscReal)(dim * dim + dim);
-  {
-    const char *v = getenv("XISO") ? getenv("XISO") : "mean";
-    if (!strcmp(v, "min") || !strcmp(v, "geo")) {
-      /* eta_D = gd:G3:gd / (2 gd:gd) for the unit symmetric directions: use min over a few */
-      PetscReal emin = eta;
-      for (PetscInt t = 0; t < 3; ++t) {
-        PetscReal D[2][2] = {{0}}, num = 0, den = 0;
-        if (t == 0) { D[0][0] = 1; D[1][1] = -1; } else if (t == 1) { D[0][1] = D[1][0] = 1; } else { D[0][0] = 1; D[1][1] = 1; }
-        for (PetscInt k = 0; k < 2; ++k) for (PetscInt d = 0; d < 2; ++d) for (PetscInt l = 0; l < 2; ++l) for (PetscInt e = 0; e < 2; ++e) num += D[k][d] * PetscRealPart(G3[((k * NcU + l) * kd + d) * kd + e]) * D[l][e];
-        for (PetscInt k = 0; k < 2; ++k) for (PetscInt d = 0; d < 2; ++d) den += D[k][d] * D[k][d];
-        if (t < 2) emin = PetscMin(emin, num / (2 * den));
-      }
-      eta = !strcmp(v, "min") ? emin : PetscSqrtReal(emin * eta);
-    }
-  }
-  for (PetscInt k = 0; k < NcU; ++k)
-    for (PetscInt l = 0; l < NcU; ++l)
-      for (PetscInt d = 0; d < kd; ++d)
-        for (PetscInt e = 0; e < kd; ++e) G3[((k * NcU + l) * kd + d) * kd + e] = eta * ((k == l && d == e ? 1.0 : 0.0) + (k == e && l == d ? 1.0 : 0.0));
-}
-
-static PetscErrorCode AssembleJacobianTable(SlumpProblem prob, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, PetscPointJac g[SLUMP_MAX_FIELDS][SLUMP_MAX_FIELDS][4], PetscBool iso, Mat Jac)
 {
   SlumpAssembly      a = prob->assembly;
   PetscDS            ds;
@@ -443,7 +385,6 @@ static PetscErrorCode AssembleJacobianTable(SlumpProblem prob, PetscReal t, Vec 
               const PetscInt n = NcI * NcJ * (k == 0 ? 1 : (k == 3 ? kd * kd : kd));
               PetscCall(PetscArrayzero(gg[k], n));
               g[f][h][k](kd, a->Nf, NfA, a->uOff, a->uOff_x, &cd->u[q * 8], &cd->ut[q * 8], &cd->ux[q * 24], aO, aOx, NfA ? &cd->ul[q * 8] : NULL, S ? &S[(c * a->Nq + q) * prob->dualNs] : NULL, NfA ? &cd->ulx[q * 24] : NULL, t, shift, &cd->x[q * 3], nc, constants, gg[k]);
-              if (iso && k == 3 && f == 0 && h == 0) IsotropicG3(dim, kd, NcI, G3);
             }
           }
           if (!has[0] && !has[1] && !has[2] && !has[3]) continue;

@@ -34,12 +34,6 @@ PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
   PetscOptionsBegin(prob->comm, NULL, "Linear solver", "SlumpProblem");
   PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with BoomerAMG on the velocity block for velocity-pressure; with a level set, block Gauss-Seidel of the flow and the level set by ILU)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
   PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|); the default without a level set) or selfp (B diag(A)^-1 B^T by BoomerAMG; the default with a level set)", "SlumpProblemConfigureKSP", pres, 2, pres[sp], &sp, &spSet));
-  {
-    const char *vpre[] = {"tangent", "isotropic"};
-    PetscInt    vp     = prob->velIso ? 1 : 0;
-    PetscCall(PetscOptionsEList("-stokes_velocity_pre", "Matrix BoomerAMG builds the velocity block's V-cycle from with -linear_solver iterative (velocity-pressure): tangent (the Jacobian's own block) or isotropic (its viscous part made isotropic at each quadrature point, eta the mean of the tangent's diagonal; a second matrix assembled with every Jacobian)", "SlumpProblemConfigureKSP", vpre, 2, vpre[vp], &vp, NULL));
-    prob->velIso = vp == 1 ? PETSC_TRUE : PETSC_FALSE;
-  }
   PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: fixed (-ksp_rtol, default 1e-10) or eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-4); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
   PetscOptionsEnd();
   prob->linForcing   = fo == 1 ? PETSC_TRUE : PETSC_FALSE;
@@ -60,7 +54,6 @@ PetscErrorCode SlumpProblemLinearDestroy(SlumpProblem prob)
 {
   PetscFunctionBeginUser;
   PetscCall(MatDestroy(&prob->Sp));
-  PetscCall(MatDestroy(&prob->Pv));
   PetscCall(DMDestroy(&prob->dmP));
   PetscCall(PetscFree(prob->pidx));
   PetscCall(ISDestroy(&prob->isU));
@@ -98,24 +91,6 @@ static PetscErrorCode StokesSetUp(SlumpProblem prob)
   f = 0;
   PetscCall(DMCreateSubDM(prob->dm, 1, &f, &prob->isU, &dmU));
   PetscCall(DMPlexCreateRigidBody(dmU, 0, &prob->nearNull));
-  {
-    /* the velocity's components interlaced point by point: a block size
-       for BoomerAMG's nodal (systems) coarsening, where every point keeps
-       all its components (a point with one constrained component breaks it) */
-    const PetscInt *ix;
-    PetscInt        n, bs, ok = 1, gok;
-    PetscCall(DMGetDimension(prob->dm, &bs));
-    PetscCall(ISGetLocalSize(prob->isU, &n));
-    PetscCall(ISGetIndices(prob->isU, &ix));
-    if (n % bs) ok = 0;
-    for (PetscInt i = 0; ok && i < n; i += bs)
-      for (PetscInt c = 1; c < bs; ++c)
-        if (ix[i + c] != ix[i] + c || ix[i] % bs) ok = 0;
-    PetscCall(ISRestoreIndices(prob->isU, &ix));
-    PetscCallMPI(MPI_Allreduce(&ok, &gok, 1, MPIU_INT, MPI_MIN, prob->comm));
-    if (gok) PetscCall(ISSetBlockSize(prob->isU, bs));
-    PetscCall(PetscInfo(NULL, "velocity block size %" PetscInt_FMT "\n", gok ? bs : 1));
-  }
   PetscCall(PetscObjectCompose((PetscObject)prob->isU, "nearnullspace", (PetscObject)prob->nearNull));
   PetscCall(DMDestroy(&dmU));
   f = 1;
@@ -225,15 +200,6 @@ static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, KSP ksp, IS isU, IS isP
   PetscFunctionReturn(0);
 }
 
-/* The Krylov solver's operators for the Jacobian J just assembled: J and
-   the preconditioning matrix (J, or Pv with -stokes_velocity_pre isotropic) */
-PetscErrorCode SlumpProblemKSPSetOperators(SlumpProblem prob, KSP ksp, Mat J)
-{
-  PetscFunctionBeginUser;
-  PetscCall(KSPSetOperators(ksp, J, prob->Pv ? prob->Pv : J));
-  PetscFunctionReturn(0);
-}
-
 PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
 {
   PC pc;
@@ -242,7 +208,6 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
     PetscCall(SlumpKSPSetDirect(ksp));
     PetscFunctionReturn(0);
   }
-  PetscCheck(!prob->petscAssembly || !prob->velIso, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_velocity_pre isotropic is assembled by our cell loop; with -assembly petsc use -stokes_velocity_pre tangent");
   PetscCheck(!prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || prob->schurPre == SLUMP_SCHUR_PRE_SELFP, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp");
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(SetDefault(ksp, "ksp_rtol", "1e-10"));

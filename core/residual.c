@@ -87,10 +87,6 @@ PetscErrorCode SlumpProblemJacobian(SlumpProblem prob, PetscReal t, Vec X, Vec X
   if (prob->petscAssembly) PetscCall(DMPlexTSComputeIJacobianFEM(prob->dm, t, prob->locX, prob->locXdot, shift, J, J, prob));
   else PetscCall(SlumpAssembleJacobian(prob, t, prob->locX, prob->locXdot, shift, J));
   if (prob->Sp) PetscCall(SlumpAssembleSchurMass(prob, t, prob->locX, prob->locXdot, shift, prob->Sp));
-  if (prob->velIso && prob->linIterative && prob->formulation == SLUMP_FORMULATION_PLANE) {
-    if (!prob->Pv) PetscCall(MatDuplicate(J, MAT_DO_NOT_COPY_VALUES, &prob->Pv));
-    PetscCall(SlumpAssembleVelocityPre(prob, t, prob->locX, prob->locXdot, shift, prob->Pv));
-  }
   prob->njac++;
   PetscFunctionReturn(0);
 }

@@ -419,7 +419,6 @@ PETSC_EXTERN PetscErrorCode SlumpKSPSetDirect(KSP ksp);
 /* The KSP of the problem's Newton steps: direct (SlumpKSPSetDirect) or, with
    -linear_solver iterative, Krylov + multigrid (core/linear.c) */
 PETSC_EXTERN PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp);
-PETSC_EXTERN PetscErrorCode SlumpProblemKSPSetOperators(SlumpProblem prob, KSP ksp, Mat J);
 /* true with -linear_solver iterative and -linear_forcing eisenstat_walker */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearForcing(SlumpProblem prob, PetscBool *ew);
 

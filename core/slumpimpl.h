@@ -100,10 +100,6 @@ struct _n_SlumpProblem {
   PetscBool     linForcing; /* Eisenstat-Walker tolerances in KINSOL's Newton */
   DM            dmP;
   Mat           Sp;
-  /* -stokes_velocity_pre isotropic: the preconditioning matrix Pv, the
-     Jacobian with an isotropic viscous velocity block, assembled with it */
-  PetscBool     velIso;
-  Mat           Pv;
   PetscInt     *pidx;
   IS            isU, isP;
   /* with a level set: the flow unknowns isF and the level set isX (global
@@ -117,7 +113,6 @@ PETSC_INTERN PetscErrorCode SlumpProblemLinearDestroy(SlumpProblem);
 PETSC_INTERN PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem);
 /* the viscosity-weighted pressure mass matrix (assembly.c) */
 PETSC_INTERN PetscErrorCode SlumpAssembleSchurMass(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat Sp);
-PETSC_INTERN PetscErrorCode SlumpAssembleVelocityPre(SlumpProblem, PetscReal t, Vec locX, Vec locXdot, PetscReal shift, Mat P);
 
 PETSC_INTERN PetscErrorCode SlumpProblemSetConstantsAll(SlumpProblem);
 /* assembly.c */

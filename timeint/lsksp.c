@@ -47,7 +47,6 @@ SUNMatrix SlumpSUNMatCreate(Mat J, SUNContext ctx)
 }
 
 typedef struct {
-  SlumpProblem      prob;
   KSP               ksp;
   Mat               J;
   PetscInt          nsolves, nits, last_its;
@@ -79,7 +78,7 @@ static int LSInitialize(SUNLinearSolver S)
 static PetscErrorCode LSSetup_Private(LSContent *c)
 {
   PetscFunctionBeginUser;
-  PetscCall(SlumpProblemKSPSetOperators(c->prob, c->ksp, c->J));
+  PetscCall(KSPSetOperators(c->ksp, c->J, c->J));
   PetscCall(KSPSetUp(c->ksp));
   PetscFunctionReturn(0);
 }
@@ -193,7 +192,6 @@ SUNLinearSolver SlumpSUNLinSolCreate(SlumpProblem prob, Mat J, SUNContext ctx)
   S->ops->lastflag    = LSLastFlag;
   S->ops->free        = LSFree;
   c->J                = J;
-  c->prob             = prob;
   if (KSPCreate(PetscObjectComm((PetscObject)J), &c->ksp)) return NULL;
   if (SlumpProblemConfigureKSP(prob, c->ksp)) return NULL;
   return S;

@@ -88,7 +88,7 @@ static PetscErrorCode SVNewton(SVContent *c, N_Vector y0, N_Vector w, realtype t
     }
     if (assemble) {
       PetscCall(SlumpProblemJacobian(c->prob, tcur, c->y, c->yp, cj, c->J));
-      PetscCall(SlumpProblemKSPSetOperators(c->prob, c->ksp, c->J));
+      PetscCall(KSPSetOperators(c->ksp, c->J, c->J));
       c->haveJ = PETSC_TRUE;
       c->cjJ   = cj;
       c->njac++;
