@@ -818,7 +818,8 @@ def test_linear_iterative():
     duct_cessation (anti-plane: GMRES + BoomerAMG) and of cavity_cessation
     on 8 x 8 cells (enclosed Stokes with inertia, the pressure pinned) within
     10 rtol of LU's. (4) The two-phase dam break with its level set
-    (linear_iterative_levelset)."""
+    (linear_iterative_levelset). (5) A Krylov solve that fails is named as
+    the cause of the failed Newton solve (linear_iterative_failure)."""
     w = work("linear_iterative")
     linear_iterative_poiseuille(w)
     its = []
@@ -834,6 +835,24 @@ def test_linear_iterative():
     linear_iterative_arrest(w, "duct_cessation", ["-output_fields", "0"])
     linear_iterative_arrest(w, "cavity_cessation", ["-mesh_nx", "8", "-mesh_ny", "8", "-output_fields", "0"])
     linear_iterative_levelset(w)
+    linear_iterative_failure(w)
+
+
+def linear_iterative_failure(w):
+    """A Krylov solve that stops (-ksp_max_it 5 on the steady Bingham
+    Poiseuille) ends the run with one sentence that blames it, names
+    -linear_solver iterative, the reason and the count, and gives the
+    remedies; no PETSc traceback."""
+    d = os.path.join(w, "krylov_failure")
+    cmd = [ARGS.slump, "-scene", "poiseuille", "-linear_solver", "iterative", "-ksp_max_it", "5", "-output_fields", "0", "-output_dir", d]
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    lines = [l for l in p.stderr.splitlines() if l.strip()]
+    print("Krylov failure: exit %d: %s" % (p.returncode, lines[0] if lines else "(no message)"))
+    if p.returncode <= 0 or p.returncode > 128:
+        fail("Krylov failure: expected an error exit, got %d" % p.returncode)
+    want = ("a Krylov solve of -linear_solver iterative did not (DIVERGED_ITS after 5 iterations)", "-linear_solver direct", "-fieldsplit_u_ksp_type gmres")
+    if len(lines) != 1 or "PETSC ERROR" in p.stderr or not all(x in lines[0] for x in want):
+        fail("Krylov failure: expected one sentence containing %s, got:\n%s" % (want, p.stderr))
 
 
 def test_linear_iterative_parallel():
