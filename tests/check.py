@@ -839,20 +839,22 @@ def test_linear_iterative():
 
 
 def linear_iterative_failure(w):
-    """A Krylov solve that stops (-ksp_max_it 5 on the steady Bingham
-    Poiseuille) ends the run with one sentence that blames it, names
-    -linear_solver iterative, the reason and the count, and gives the
-    remedies; no PETSc traceback."""
-    d = os.path.join(w, "krylov_failure")
-    cmd = [ARGS.slump, "-scene", "poiseuille", "-linear_solver", "iterative", "-ksp_max_it", "5", "-output_fields", "0", "-output_dir", d]
-    p = subprocess.run(cmd, capture_output=True, text=True)
-    lines = [l for l in p.stderr.splitlines() if l.strip()]
-    print("Krylov failure: exit %d: %s" % (p.returncode, lines[0] if lines else "(no message)"))
-    if p.returncode <= 0 or p.returncode > 128:
-        fail("Krylov failure: expected an error exit, got %d" % p.returncode)
-    want = ("a Krylov solve of -linear_solver iterative did not (DIVERGED_ITS after 5 iterations)", "-linear_solver direct", "-fieldsplit_u_ksp_type gmres")
-    if len(lines) != 1 or "PETSC ERROR" in p.stderr or not all(x in lines[0] for x in want):
-        fail("Krylov failure: expected one sentence containing %s, got:\n%s" % (want, p.stderr))
+    """Krylov solves that stop (-ksp_max_it 5) end the run with one sentence
+    that blames them, names -linear_solver iterative, the reason and the
+    count, and gives the remedies; no PETSc traceback: in the steady Newton
+    (Bingham Poiseuille) and in IDA's steps (the Newtonian decay)."""
+    cases = (("poiseuille", ("a Krylov solve of -linear_solver iterative did not (DIVERGED_ITS after 5 iterations)", "-linear_solver direct", "-fieldsplit_u_ksp_type gmres")),
+             ("decay", ("IDA failed", "Krylov solves of -linear_solver iterative did not converge (the last: DIVERGED_ITS after 5 iterations)", "-linear_solver direct")))
+    for scene, want in cases:
+        d = os.path.join(w, "krylov_failure_" + scene)
+        cmd = [ARGS.slump, "-scene", scene, "-linear_solver", "iterative", "-ksp_max_it", "5", "-output_fields", "0", "-output_dir", d]
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        lines = [l for l in p.stderr.splitlines() if l.strip()]
+        print("Krylov failure, %s: exit %d: %s" % (scene, p.returncode, lines[0] if lines else "(no message)"))
+        if p.returncode <= 0 or p.returncode > 128:
+            fail("Krylov failure, %s: expected an error exit, got %d" % (scene, p.returncode))
+        if len(lines) != 1 or "PETSC ERROR" in p.stderr or not all(x in lines[0] for x in want):
+            fail("Krylov failure, %s: expected one sentence containing %s, got:\n%s" % (scene, want, p.stderr))
 
 
 def test_linear_iterative_parallel():

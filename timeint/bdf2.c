@@ -142,6 +142,12 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
       PetscCall(VecAXPBYPCZ(beta, -2.0 / dt, 0.5 / dt, 0.0, Yn, Yprev));
     }
     PetscCall(SlumpImplicitSolverSolve(s, tn1, alpha, beta, X, &conv, &nits, &lits));
+    if (!conv) {
+      PetscInt           nf, fits;
+      KSPConvergedReason fr;
+      PetscCall(SlumpImplicitSolverGetLinearFailures(s, &nf, &fits, &fr));
+      PetscCheck(!nf, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g because a Krylov solve of -linear_solver iterative did not (%s after %" PetscInt_FMT " iterations); use -linear_solver direct or a stronger preconditioner (see docs/performance.md)", (double)tn1, KSPConvergedReasons[fr], fits);
+    }
     PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g; reduce -time_dt, raise -newton_max_it, or use -newton_linearisation stress_velocity", (double)tn1);
     {
       SlumpStepRecord r = {tn1, dt, (n == 0 || !have_prev) ? 1 : 2, nits, lits, 0, 0, X};

@@ -98,6 +98,7 @@ PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchGetLinearIterations(SUNNo
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem, Vec X, PetscInt maxit, PetscBool reuse_jacobian, SUNContext, SUNNonlinearSolver *);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetCounts(SUNNonlinearSolver, PetscInt *njac, PetscInt *nretry);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(SUNNonlinearSolver, PetscInt *);
+PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearFailures(SUNNonlinearSolver, PetscInt *nfail, PetscInt *its, KSPConvergedReason *reason);
 /* The problem set up for the linearisation -newton_linearisation asked for
    (SlumpProblemGetStressVelocityOption): *sv. */
 PETSC_INTERN PetscErrorCode SlumpLinearisationSetUp(SlumpProblem, MPI_Comm, PetscBool *sv);
