@@ -34,6 +34,8 @@ PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
   PetscOptionsBegin(prob->comm, NULL, "Linear solver", "SlumpProblem");
   PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with BoomerAMG on the velocity block for velocity-pressure; with a level set, block Gauss-Seidel of the flow and the level set by ILU)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
   PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|); the default without a level set) or selfp (B diag(A)^-1 B^T by BoomerAMG; the default with a level set)", "SlumpProblemConfigureKSP", pres, 2, pres[sp], &sp, &spSet));
+  PetscCall(PetscOptionsInt("-linear_escalate_its", "With -linear_solver iterative (velocity-pressure): a Krylov solve that passes this many iterations is repeated, and every later one made, with an inner GMRES solve of the velocity block to 1e-2 (0: never; ignored when -fieldsplit_u_ksp_type is given)", "SlumpProblemKSPSolve", prob->linEscalateIts, &prob->linEscalateIts, NULL));
+  PetscCheck(prob->linEscalateIts >= 0, prob->comm, PETSC_ERR_USER_INPUT, "-linear_escalate_its must be a non-negative number of iterations (0: never escalate); got %" PetscInt_FMT, prob->linEscalateIts);
   PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: fixed (-ksp_rtol, default 1e-10) or eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-4); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
   PetscOptionsEnd();
   prob->linForcing   = fo == 1 ? PETSC_TRUE : PETSC_FALSE;
@@ -171,6 +173,16 @@ static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, KSP ksp, IS isU, IS isP
   PetscCall(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER));
   if (prob->schurPre == SLUMP_SCHUR_PRE_MASS) PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, prob->Sp));
   else PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, NULL));
+  {
+    /* the user's own velocity-block solve is not escalated */
+    const char *prefix;
+    char        name[256];
+    PetscBool   has;
+    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%sfieldsplit_u_ksp_type", prefix ? prefix : ""));
+    PetscCall(PetscOptionsHasName(NULL, NULL, name, &has));
+    if (has) prob->linEscalateIts = 0;
+  }
   PetscCall(SetDefault(ksp, "fieldsplit_u_ksp_type", "preonly"));
 #if defined(PETSC_HAVE_HYPRE)
   /* BoomerAMG with a strong threshold of 0.7 (the default 0.25 suits
@@ -254,5 +266,89 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
   }
   PetscCall(KSPGMRESSetRestart(ksp, 100));
   PetscCall(KSPSetFromOptions(ksp));
+  PetscFunctionReturn(0);
+}
+
+/* The velocity block's KSP of ksp's Schur fieldsplit (inside the flow block
+   with a level set), NULL if there is none. */
+static PetscErrorCode VelocityKSP(SlumpProblem prob, KSP ksp, KSP *ku)
+{
+  PC          pc;
+  PetscBool   isfs;
+  KSP        *sub;
+  PetscInt    ns;
+  PetscFunctionBeginUser;
+  *ku = NULL;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &isfs));
+  if (!isfs) PetscFunctionReturn(0);
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(PCFieldSplitGetSubKSP(pc, &ns, &sub));
+  if (prob->extraField >= 0) {
+    KSP flow = sub[0];
+    PetscCall(PetscFree(sub));
+    PetscCall(KSPGetPC(flow, &pc));
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &isfs));
+    if (!isfs) PetscFunctionReturn(0);
+    PetscCall(KSPSetUp(flow));
+    PetscCall(PCFieldSplitGetSubKSP(pc, &ns, &sub));
+  }
+  *ku = sub[0];
+  PetscCall(PetscFree(sub));
+  PetscFunctionReturn(0);
+}
+
+/* An inner GMRES solve of the velocity block to 1e-2 instead of one
+   V-cycle (FGMRES outside accepts the varying preconditioner): robust where
+   the V-cycle alone stalls, at several V-cycles per outer iteration. */
+static PetscErrorCode Escalate(SlumpProblem prob, KSP ksp, PetscBool *done)
+{
+  KSP       ku;
+  KSPType   type;
+  PetscBool pre;
+  PetscFunctionBeginUser;
+  *done = PETSC_FALSE;
+  PetscCall(VelocityKSP(prob, ksp, &ku));
+  if (!ku) PetscFunctionReturn(0);
+  PetscCall(KSPGetType(ku, &type));
+  PetscCall(PetscStrcmp(type, KSPPREONLY, &pre));
+  if (!pre) PetscFunctionReturn(0);
+  PetscCall(KSPSetType(ku, KSPGMRES));
+  PetscCall(KSPSetTolerances(ku, 1e-2, PETSC_DEFAULT, PETSC_DEFAULT, 1000));
+  PetscCall(KSPSetNormType(ku, KSP_NORM_UNPRECONDITIONED));
+  PetscCall(KSPSetPCSide(ku, PC_RIGHT));
+  *done = PETSC_TRUE;
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, PetscInt *its)
+{
+  PetscInt  maxit, its1;
+  PetscReal rtol, abstol, dtol;
+  PetscBool can = (PetscBool)(prob->linIterative && prob->formulation == SLUMP_FORMULATION_PLANE && prob->linEscalateIts > 0), done;
+  PetscFunctionBeginUser;
+  if (can && prob->linEscalated) PetscCall(Escalate(prob, ksp, &done)); /* a KSP not yet switched */
+  if (!can || prob->linEscalated) {
+    PetscCall(KSPSolve(ksp, b, x));
+    PetscCall(KSPGetConvergedReason(ksp, reason));
+    PetscCall(KSPGetIterationNumber(ksp, its));
+    PetscFunctionReturn(0);
+  }
+  PetscCall(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &maxit));
+  PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, PetscMin(maxit, prob->linEscalateIts)));
+  PetscCall(KSPSolve(ksp, b, x));
+  PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, maxit));
+  PetscCall(KSPGetConvergedReason(ksp, reason));
+  PetscCall(KSPGetIterationNumber(ksp, &its1));
+  *its = its1;
+  if (*reason > 0) PetscFunctionReturn(0);
+  PetscCall(Escalate(prob, ksp, &done));
+  if (!done) PetscFunctionReturn(0);
+  prob->linEscalated = PETSC_TRUE;
+  PetscCall(PetscPrintf(prob->comm, "linear: a Krylov solve stopped (%s after %" PetscInt_FMT " iterations); from now on the velocity block is solved by GMRES to 1e-2 in each application (-linear_escalate_its)\n", KSPConvergedReasons[*reason], its1));
+  PetscCall(KSPSolve(ksp, b, x));
+  PetscCall(KSPGetConvergedReason(ksp, reason));
+  PetscCall(KSPGetIterationNumber(ksp, its));
+  *its += its1;
   PetscFunctionReturn(0);
 }

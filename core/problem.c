@@ -22,6 +22,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->axis           = -1;
   p->yieldedOverride = -1.0;
   p->linForcing     = PETSC_FALSE;
+  p->linEscalateIts = 1000;
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
   PetscFunctionReturn(0);

@@ -419,6 +419,11 @@ PETSC_EXTERN PetscErrorCode SlumpKSPSetDirect(KSP ksp);
 /* The KSP of the problem's Newton steps: direct (SlumpKSPSetDirect) or, with
    -linear_solver iterative, Krylov + multigrid (core/linear.c) */
 PETSC_EXTERN PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp);
+/* KSPSolve with the problem's escalation (core/linear.c): with -linear_solver
+   iterative on velocity-pressure, a solve that passes -linear_escalate_its
+   iterations is repeated, and every later solve made, with an inner GMRES
+   solve of the velocity block. its: the outer iterations of all attempts. */
+PETSC_EXTERN PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, PetscInt *its);
 /* true with -linear_solver iterative and -linear_forcing eisenstat_walker */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearForcing(SlumpProblem prob, PetscBool *ew);
 

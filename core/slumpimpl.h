@@ -98,6 +98,11 @@ struct _n_SlumpProblem {
   PetscInt      schurPre;   /* SLUMP_SCHUR_PRE_* */
   PetscBool     schurPreSet; /* by the user; else mass, selfp with a level set */
   PetscBool     linForcing; /* Eisenstat-Walker tolerances in KINSOL's Newton */
+  /* velocity-pressure: a Krylov solve that passes linEscalateIts iterations
+     (0: never) switches every solve of the run to an inner GMRES solve of
+     the velocity block (SlumpProblemKSPSolve); linEscalated once it has */
+  PetscInt      linEscalateIts;
+  PetscBool     linEscalated;
   DM            dmP;
   Mat           Sp;
   PetscInt     *pidx;

@@ -47,6 +47,7 @@ SUNMatrix SlumpSUNMatCreate(Mat J, SUNContext ctx)
 }
 
 typedef struct {
+  SlumpProblem      prob;
   KSP               ksp;
   Mat               J;
   PetscInt          nsolves, nits, last_its;
@@ -118,9 +119,7 @@ static PetscErrorCode LSSolve_Private(LSContent *c, Vec x, Vec b, PetscBool *ok)
     c->bprev = bn;
     PetscCall(KSPSetTolerances(c->ksp, c->eta, PETSC_DEFAULT, PETSC_DEFAULT, PETSC_DEFAULT));
   }
-  PetscCall(KSPSolve(c->ksp, b, x));
-  PetscCall(KSPGetConvergedReason(c->ksp, &reason));
-  PetscCall(KSPGetIterationNumber(c->ksp, &its));
+  PetscCall(SlumpProblemKSPSolve(c->prob, c->ksp, b, x, &reason, &its));
   c->last_its = PetscMax(its, 1);
   c->nits += c->last_its;
   c->nsolves++;
@@ -200,6 +199,7 @@ SUNLinearSolver SlumpSUNLinSolCreate(SlumpProblem prob, Mat J, SUNContext ctx)
   S->ops->lastflag    = LSLastFlag;
   S->ops->free        = LSFree;
   c->J                = J;
+  c->prob             = prob;
   if (KSPCreate(PetscObjectComm((PetscObject)J), &c->ksp)) return NULL;
   if (SlumpProblemConfigureKSP(prob, c->ksp)) return NULL;
   return S;

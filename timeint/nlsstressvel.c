@@ -97,9 +97,7 @@ static PetscErrorCode SVNewton(SVContent *c, N_Vector y0, N_Vector w, realtype t
       c->njac++;
     }
     PetscCall(VecScale(c->f, -1.0));
-    PetscCall(KSPSolve(c->ksp, c->f, c->del));
-    PetscCall(KSPGetConvergedReason(c->ksp, &reason));
-    PetscCall(KSPGetIterationNumber(c->ksp, &its));
+    PetscCall(SlumpProblemKSPSolve(c->prob, c->ksp, c->f, c->del, &reason, &its));
     c->nlin += PetscMax(its, 1);
     c->lastits++;
     if (reason <= 0) {
