@@ -103,6 +103,7 @@ struct _n_SlumpProblem {
      the velocity block (SlumpProblemKSPSolve); linEscalated once it has */
   PetscInt      linEscalateIts;
   PetscBool     linEscalated;
+  PetscBool     linConfigured; /* a KSP has been configured (defaults set) */
   DM            dmP;
   Mat           Sp;
   PetscInt     *pidx;

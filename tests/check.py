@@ -1200,6 +1200,7 @@ INPUT_CASES = [
     ("granular_cylinder_load_step", ["-scene", "granular_cylinder", "-granular_cylinder_load_step", "0"], "-granular_cylinder_load_step"),
     ("granular_cylinder_lambda", ["-scene", "granular_cylinder", "-granular_cylinder_load_lambda_r", "0"], "-granular_cylinder_load_lambda_r"),
     ("cavity_grid", ["-scene", "cavity", "-cavity_grid", "5"], "-cavity_grid"),
+    ("linear_escalate_its", ["-scene", "poiseuille", "-linear_solver", "iterative", "-linear_escalate_its", "-3"], "-linear_escalate_its"),
 ]
 
 
