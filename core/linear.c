@@ -320,9 +320,18 @@ static PetscErrorCode Escalate(SlumpProblem prob, KSP ksp, PetscBool *done)
   PetscFunctionReturn(0);
 }
 
+static PetscErrorCode Solve(KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, PetscInt *its)
+{
+  PetscFunctionBeginUser;
+  PetscCall(KSPSolve(ksp, b, x));
+  PetscCall(KSPGetConvergedReason(ksp, reason));
+  PetscCall(KSPGetIterationNumber(ksp, its));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, PetscInt *its)
 {
-  PetscInt  maxit, its1;
+  PetscInt  maxit, its1 = 0;
   PetscReal rtol, abstol, dtol;
   /* not with a level set: on bingham_dam_break the velocity block is not
      what stalls, and after the switch the solves took 3000 to > 10000
@@ -330,27 +339,32 @@ PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KS
   PetscBool can = (PetscBool)(prob->linIterative && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0 && prob->linEscalateIts > 0), done;
   PetscFunctionBeginUser;
   if (can && prob->linEscalated) PetscCall(Escalate(prob, ksp, &done)); /* a KSP not yet switched */
-  if (!can || prob->linEscalated) {
-    PetscCall(KSPSolve(ksp, b, x));
-    PetscCall(KSPGetConvergedReason(ksp, reason));
-    PetscCall(KSPGetIterationNumber(ksp, its));
-    PetscFunctionReturn(0);
+  if (!can || prob->linEscalated) PetscCall(Solve(ksp, b, x, reason, its));
+  else {
+    PetscCall(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &maxit));
+    PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, PetscMin(maxit, prob->linEscalateIts)));
+    PetscCall(Solve(ksp, b, x, reason, its));
+    PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, maxit));
+    if (*reason <= 0) PetscCall(Escalate(prob, ksp, &done));
+    if (*reason <= 0 && done) {
+      prob->linEscalated = PETSC_TRUE;
+      its1               = *its;
+      PetscCall(PetscPrintf(prob->comm, "linear: a Krylov solve stopped (%s after %" PetscInt_FMT " iterations); from now on the velocity block is solved by GMRES to 1e-2 in each application (-linear_escalate_its)\n", KSPConvergedReasons[*reason], its1));
+      PetscCall(Solve(ksp, b, x, reason, its));
+      *its += its1;
+    }
   }
-  PetscCall(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &maxit));
-  PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, PetscMin(maxit, prob->linEscalateIts)));
-  PetscCall(KSPSolve(ksp, b, x));
-  PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, maxit));
-  PetscCall(KSPGetConvergedReason(ksp, reason));
-  PetscCall(KSPGetIterationNumber(ksp, &its1));
-  *its = its1;
-  if (*reason > 0) PetscFunctionReturn(0);
-  PetscCall(Escalate(prob, ksp, &done));
-  if (!done) PetscFunctionReturn(0);
-  prob->linEscalated = PETSC_TRUE;
-  PetscCall(PetscPrintf(prob->comm, "linear: a Krylov solve stopped (%s after %" PetscInt_FMT " iterations); from now on the velocity block is solved by GMRES to 1e-2 in each application (-linear_escalate_its)\n", KSPConvergedReasons[*reason], its1));
-  PetscCall(KSPSolve(ksp, b, x));
-  PetscCall(KSPGetConvergedReason(ksp, reason));
-  PetscCall(KSPGetIterationNumber(ksp, its));
-  *its += its1;
+  if (*reason <= 0) {
+    prob->linFail.n++;
+    prob->linFail.its    = *its - its1;
+    prob->linFail.reason = *reason;
+  }
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemGetLinearFailures(SlumpProblem prob, SlumpLinearFailures *f)
+{
+  PetscFunctionBeginUser;
+  *f = prob->linFail;
   PetscFunctionReturn(0);
 }

@@ -424,6 +424,13 @@ PETSC_EXTERN PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
    iterations is repeated, and every later solve made, with an inner GMRES
    solve of the velocity block. its: the outer iterations of all attempts. */
 PETSC_EXTERN PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, PetscInt *its);
+/* Krylov solves of SlumpProblemKSPSolve that did not converge: how many
+   (over the run), and the last one's iterations and reason */
+typedef struct {
+  PetscInt           n, its;
+  KSPConvergedReason reason;
+} SlumpLinearFailures;
+PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearFailures(SlumpProblem prob, SlumpLinearFailures *f);
 /* true with -linear_solver iterative and -linear_forcing eisenstat_walker */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearForcing(SlumpProblem prob, PetscBool *ew);
 

@@ -104,6 +104,7 @@ struct _n_SlumpProblem {
   PetscInt      linEscalateIts;
   PetscBool     linEscalated;
   PetscBool     linConfigured; /* a KSP has been configured (defaults set) */
+  SlumpLinearFailures linFail;
   DM            dmP;
   Mat           Sp;
   PetscInt     *pidx;

@@ -143,10 +143,9 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     }
     PetscCall(SlumpImplicitSolverSolve(s, tn1, alpha, beta, X, &conv, &nits, &lits));
     if (!conv) {
-      PetscInt           nf, fits;
-      KSPConvergedReason fr;
-      PetscCall(SlumpImplicitSolverGetLinearFailures(s, &nf, &fits, &fr));
-      PetscCheck(!nf, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g because a Krylov solve of -linear_solver iterative did not (%s after %" PetscInt_FMT " iterations); use -linear_solver direct or a stronger preconditioner (see docs/performance.md)", (double)tn1, KSPConvergedReasons[fr], fits);
+      SlumpLinearFailures lf;
+      PetscCall(SlumpImplicitSolverGetLinearFailures(s, &lf));
+      PetscCheck(!lf.n, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g because a Krylov solve of -linear_solver iterative did not (%s after %" PetscInt_FMT " iterations); use -linear_solver direct or a stronger preconditioner (see docs/performance.md)", (double)tn1, KSPConvergedReasons[lf.reason], lf.its);
     }
     PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g; reduce -time_dt, raise -newton_max_it, or use -newton_linearisation stress_velocity", (double)tn1);
     {

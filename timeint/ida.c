@@ -191,24 +191,6 @@ static PetscErrorCode CalcICContinued(MPI_Comm comm, void *mem, SlumpProblem pro
    nonlinear Stokes solve), with continuation in the regularisation
    parameter if it fails (up to 1e4 times softer). Its first step only sets
    IDACalcIC's time scale (cj): the last step, else 1e-3 of the run. */
-/* Krylov solves that did not converge, in IDA's linear solver and in the
-   stress-velocity Newton's own KSP (nls, or NULL); the count and reason of
-   the last failure (the stress-velocity KSP's, if it had any) */
-static PetscErrorCode LinearFailures(SUNLinearSolver LS, SUNNonlinearSolver nls, PetscInt *n, PetscInt *its, KSPConvergedReason *reason)
-{
-  PetscInt           n2 = 0, its2 = 0;
-  KSPConvergedReason r2 = KSP_CONVERGED_ITERATING;
-  PetscFunctionBeginUser;
-  PetscCall(SlumpSUNLinSolGetFailures(LS, n, its, reason));
-  if (nls) PetscCall(SlumpSUNNonlinSolStressVelocityGetLinearFailures(nls, &n2, &its2, &r2));
-  if (n2) {
-    if (its) *its = its2;
-    if (reason) *reason = r2;
-  }
-  *n += n2;
-  PetscFunctionReturn(0);
-}
-
 static PetscErrorCode QuasiStaticIC(void *mem, SlumpIntegrator ti, N_Vector yy, N_Vector yp, SUNLinearSolver LS, void *user, MPI_Comm comm)
 {
   realtype       t;
@@ -406,18 +388,17 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
   } else if (ti->outmon) PetscCall(ti->outmon(ti, ti->t0, X, ti->outctx));
   next_out = ti->t0 + kout * ti->dtout;
   for (;;) {
-    PetscInt nkf0, nkf1, kfits;
-    KSPConvergedReason kfr;
-    int flag;
-    PetscCall(LinearFailures(LS, sv && !ti->linesearch ? NLS : NULL, &nkf0, NULL, NULL));
+    SlumpLinearFailures lf0, lf;
+    int                 flag;
+    PetscCall(SlumpProblemGetLinearFailures(ti->prob, &lf0));
     flag = IDASolve(mem, ti->tfinal, &tret, yy, yp, IDA_ONE_STEP);
     if (flag < 0) {
       char *name = IDAGetReturnFlagName(flag);
       ti->t      = tret;
       PetscCall(PetscStrallocpy(name, &name));
       /* the step failed because Krylov solves did: say so */
-      PetscCall(LinearFailures(LS, sv && !ti->linesearch ? NLS : NULL, &nkf1, &kfits, &kfr));
-      if (nkf1 > nkf0) SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s because %" PetscInt_FMT " Krylov solves of -linear_solver iterative did not converge (the last: %s after %" PetscInt_FMT " iterations); use -linear_solver direct or a stronger preconditioner (see docs/performance.md)", (double)tret, name, nkf1 - nkf0, KSPConvergedReasons[kfr], kfits);
+      PetscCall(SlumpProblemGetLinearFailures(ti->prob, &lf));
+      if (lf.n > lf0.n) SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s because %" PetscInt_FMT " Krylov solves of -linear_solver iterative did not converge (the last: %s after %" PetscInt_FMT " iterations); use -linear_solver direct or a stronger preconditioner (see docs/performance.md)", (double)tret, name, lf.n - lf0.n, KSPConvergedReasons[lf.reason], lf.its);
       if (flag == IDA_CONV_FAIL && !sv && !ti->linesearch) SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s (the primal Newton; -newton_linearisation stress_velocity converges on stiff yield laws, or try -ida_nonlinear_solver linesearch)", (double)tret, name);
       if (flag == IDA_CONV_FAIL) SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s (raise -ida_max_nonlin_iters, e.g. 8, or try -ida_nonlinear_solver linesearch)", (double)tret, name);
       SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s (try smaller -time_rtol/-time_dt, a softer regularisation, or -time_max_steps)", (double)tret, name);

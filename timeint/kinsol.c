@@ -22,10 +22,9 @@ struct _n_SlumpImplicitSolver {
   SlumpStats      stats;
   PetscReal       hist[128]; /* max|F| at each Newton iterate of the last solve */
   PetscInt        nhist;
-  /* Krylov solves of the last solve that did not converge, the last one's
-     iterations and reason */
-  PetscInt           linfail, linfail_its;
-  KSPConvergedReason linfail_reason;
+  /* Krylov solves of the last solve that did not converge (n), the last
+     one's iterations and reason */
+  SlumpLinearFailures linfail;
 };
 
 static PetscErrorCode FormYdot(SlumpImplicitSolver s, Vec u, Vec *ydot)
@@ -173,7 +172,8 @@ PetscErrorCode SlumpImplicitSolverSetResidualScale(SlumpImplicitSolver s, PetscR
 PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, PetscReal alpha, Vec beta, Vec X, PetscBool *converged, PetscInt *newton_its, PetscInt *lin_its)
 {
   long int  nni1 = 0;
-  PetscInt  ls0, ls1, li0, li1, nf0, nf1;
+  PetscInt  ls0, ls1, li0, li1;
+  SlumpLinearFailures lf0;
   PetscReal f0, tol, fnorm;
   int       flag;
   PetscFunctionBeginUser;
@@ -188,13 +188,13 @@ PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, Pets
   s->fref = 0.0;
   PetscCheck(!KINSetFuncNormTol(s->kmem, tol), s->comm, PETSC_ERR_LIB, "KINSetFuncNormTol failed");
   PetscCall(SlumpSUNLinSolGetCounts(s->LS, &ls0, &li0));
-  PetscCall(SlumpSUNLinSolGetFailures(s->LS, &nf0, NULL, NULL));
+  PetscCall(SlumpProblemGetLinearFailures(s->prob, &lf0));
   PetscCall(SlumpProblemDualBegin(s->prob, t, s->u));
   flag = KINSol(s->kmem, s->nu, s->linesearch ? KIN_LINESEARCH : KIN_NONE, s->nscale, s->nscale);
   KINGetNumNonlinSolvIters(s->kmem, &nni1);
   PetscCall(SlumpSUNLinSolGetCounts(s->LS, &ls1, &li1));
-  PetscCall(SlumpSUNLinSolGetFailures(s->LS, &nf1, &s->linfail_its, &s->linfail_reason));
-  s->linfail = nf1 - nf0;
+  PetscCall(SlumpProblemGetLinearFailures(s->prob, &s->linfail));
+  s->linfail.n -= lf0.n;
   KINGetFuncNorm(s->kmem, &fnorm);
   PetscCall(PetscInfo(NULL, "KINSol flag %d (%s), fnorm %g, tol %g\n", flag, KINGetReturnFlagName(flag), (double)fnorm, (double)tol));
   if (flag == KIN_SUCCESS || flag == KIN_INITIAL_GUESS_OK) *converged = PETSC_TRUE;
@@ -216,12 +216,10 @@ PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, Pets
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SlumpImplicitSolverGetLinearFailures(SlumpImplicitSolver s, PetscInt *nfail, PetscInt *its, KSPConvergedReason *reason)
+PetscErrorCode SlumpImplicitSolverGetLinearFailures(SlumpImplicitSolver s, SlumpLinearFailures *f)
 {
   PetscFunctionBeginUser;
-  *nfail = s->linfail;
-  if (its) *its = s->linfail_its;
-  if (reason) *reason = s->linfail_reason;
+  *f = s->linfail;
   PetscFunctionReturn(0);
 }
 
@@ -304,21 +302,20 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
     if (regname) PetscCall(PetscPrintf(comm, "steady: %s = %-10.4g Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", regname, (double)v, nits, lits, (double)fn, conv ? "" : "  (not converged)"));
     else PetscCall(PetscPrintf(comm, "steady: Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", nits, lits, (double)fn, conv ? "" : "  (not converged)"));
     if (!conv) {
-      PetscInt           nf, fits;
-      KSPConvergedReason fr;
+      SlumpLinearFailures lf;
       /* leave the model's own value in place: a caller that retries (a load
          continuation) would otherwise go on at this intermediate one */
       if (set) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, target));
-      PetscCall(SlumpImplicitSolverGetLinearFailures(s, &nf, &fits, &fr));
+      PetscCall(SlumpImplicitSolverGetLinearFailures(s, &lf));
       PetscCall(SlumpImplicitSolverDestroy(&s));
       /* the Newton iteration stopped because a Krylov solve did: say so (the
          steady Poiseuille at m = 1e6 with -linear_solver iterative) */
-      if (nf) {
+      if (lf.n) {
         SlumpFormulation form;
         char             at[64] = "";
         PetscCall(SlumpProblemGetFormulation(prob, &form));
         if (regname) (void)snprintf(at, sizeof(at), " at %s = %g", regname, (double)v); /* C's %g: no trailing point */
-        SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge%s because a Krylov solve of -linear_solver iterative did not (%s after %" PetscInt_FMT " iterations); use -linear_solver direct%s (see docs/performance.md)", at, KSPConvergedReasons[fr], fits,
+        SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge%s because a Krylov solve of -linear_solver iterative did not (%s after %" PetscInt_FMT " iterations); use -linear_solver direct%s (see docs/performance.md)", at, KSPConvergedReasons[lf.reason], lf.its,
                 form == SLUMP_FORMULATION_PLANE ? ", or an inner Krylov solve of the velocity block (-fieldsplit_u_ksp_type gmres -fieldsplit_u_ksp_rtol 1e-2)" : "");
       }
     }

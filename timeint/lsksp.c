@@ -51,9 +51,6 @@ typedef struct {
   KSP               ksp;
   Mat               J;
   PetscInt          nsolves, nits, last_its;
-  /* Krylov solves that did not converge; the last one's reason and count */
-  PetscInt           nfail, fail_its;
-  KSPConvergedReason fail_reason;
   long int          last_flag;
   void             *ida_mem;   /* exact Newton: re-assemble at IDA's iterate */
   SlumpLSAssembleFn assemble;
@@ -124,11 +121,6 @@ static PetscErrorCode LSSolve_Private(LSContent *c, Vec x, Vec b, PetscBool *ok)
   c->nits += c->last_its;
   c->nsolves++;
   *ok = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
-  if (!*ok) {
-    c->nfail++;
-    c->fail_its    = its;
-    c->fail_reason = reason;
-  }
   PetscFunctionReturn(0);
 }
 
@@ -203,16 +195,6 @@ SUNLinearSolver SlumpSUNLinSolCreate(SlumpProblem prob, Mat J, SUNContext ctx)
   if (KSPCreate(PetscObjectComm((PetscObject)J), &c->ksp)) return NULL;
   if (SlumpProblemConfigureKSP(prob, c->ksp)) return NULL;
   return S;
-}
-
-PetscErrorCode SlumpSUNLinSolGetFailures(SUNLinearSolver LS, PetscInt *nfail, PetscInt *its, KSPConvergedReason *reason)
-{
-  LSContent *c = (LSContent *)LS->content;
-  PetscFunctionBeginUser;
-  *nfail = c->nfail;
-  if (its) *its = c->fail_its;
-  if (reason) *reason = c->fail_reason;
-  PetscFunctionReturn(0);
 }
 
 PetscErrorCode SlumpSUNLinSolGetCounts(SUNLinearSolver LS, PetscInt *nsolves, PetscInt *nits)

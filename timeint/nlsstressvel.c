@@ -31,9 +31,6 @@ typedef struct {
   long int     njac, nretry;
   long int     lastits, lastfail;
   PetscInt     nlin;
-  /* Krylov solves that did not converge; the last one's count and reason */
-  PetscInt           nkspfail, kspfail_its;
-  KSPConvergedReason kspfail_reason;
 } SVContent;
 
 /* IDA's test (ida_nls.c): m = 0 accepts with the rate of earlier solves;
@@ -100,12 +97,8 @@ static PetscErrorCode SVNewton(SVContent *c, N_Vector y0, N_Vector w, realtype t
     PetscCall(SlumpProblemKSPSolve(c->prob, c->ksp, c->f, c->del, &reason, &its));
     c->nlin += PetscMax(its, 1);
     c->lastits++;
-    if (reason <= 0) {
-      c->nkspfail++;
-      c->kspfail_its    = its;
-      c->kspfail_reason = reason;
+    if (reason <= 0)
       break;
-    }
     if (cj != c->cjJ)
       PetscCall(VecScale(c->del, 2.0 / (1.0 + cj / c->cjJ)));
     PetscCall(VecAXPY(c->y, 1.0, c->del));
@@ -234,16 +227,6 @@ PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(SUNNonlinearSo
 {
   PetscFunctionBeginUser;
   *nlin = ((SVContent *)nls->content)->nlin;
-  PetscFunctionReturn(0);
-}
-
-PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearFailures(SUNNonlinearSolver nls, PetscInt *nfail, PetscInt *its, KSPConvergedReason *reason)
-{
-  SVContent *c = (SVContent *)nls->content;
-  PetscFunctionBeginUser;
-  *nfail = c->nkspfail;
-  if (its) *its = c->kspfail_its;
-  if (reason) *reason = c->kspfail_reason;
   PetscFunctionReturn(0);
 }
 

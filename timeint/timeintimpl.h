@@ -13,8 +13,6 @@ PETSC_INTERN SUNMatrix       SlumpSUNMatCreate(Mat J, SUNContext ctx);
 /* A direct SUNLinearSolver that solves with a PETSc KSP on that Mat. */
 PETSC_INTERN SUNLinearSolver SlumpSUNLinSolCreate(SlumpProblem prob, Mat J, SUNContext ctx);
 PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetCounts(SUNLinearSolver LS, PetscInt *nsolves, PetscInt *nits);
-/* Krylov solves that did not converge, the last one's iterations and reason */
-PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetFailures(SUNLinearSolver LS, PetscInt *nfail, PetscInt *its, KSPConvergedReason *reason);
 PETSC_INTERN PetscErrorCode  SlumpSUNLinSolGetKSP(SUNLinearSolver LS, KSP *ksp);
 /* Exact Newton inside IDA: before each solve, re-assemble J at IDA's current
    iterate (IDAGetNonlinearSystemData) with the current cj. */
@@ -37,7 +35,7 @@ PETSC_INTERN PetscErrorCode SlumpImplicitSolverDestroy(SlumpImplicitSolver *s);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverSolve(SlumpImplicitSolver s, PetscReal t, PetscReal alpha, Vec beta, Vec X, PetscBool *converged, PetscInt *newton_its, PetscInt *lin_its);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetHistory(SlumpImplicitSolver s, PetscInt *n, const PetscReal **hist);
 /* Krylov solves of the last SlumpImplicitSolverSolve that did not converge */
-PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetLinearFailures(SlumpImplicitSolver s, PetscInt *nfail, PetscInt *its, KSPConvergedReason *reason);
+PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetLinearFailures(SlumpImplicitSolver s, SlumpLinearFailures *f);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverGetStats(SlumpImplicitSolver s, SlumpStats *stats);
 PETSC_INTERN PetscErrorCode SlumpImplicitSolverSetTolerance(SlumpImplicitSolver s, PetscReal fnormtol);
 /* KINSOL's line search unless -newton_linesearch was given (default on). */
@@ -98,7 +96,6 @@ PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolLineSearchGetLinearIterations(SUNNo
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityCreate(SlumpProblem, Vec X, PetscInt maxit, PetscBool reuse_jacobian, SUNContext, SUNNonlinearSolver *);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetCounts(SUNNonlinearSolver, PetscInt *njac, PetscInt *nretry);
 PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearIterations(SUNNonlinearSolver, PetscInt *);
-PETSC_INTERN PetscErrorCode SlumpSUNNonlinSolStressVelocityGetLinearFailures(SUNNonlinearSolver, PetscInt *nfail, PetscInt *its, KSPConvergedReason *reason);
 /* The problem set up for the linearisation -newton_linearisation asked for
    (SlumpProblemGetStressVelocityOption): *sv. */
 PETSC_INTERN PetscErrorCode SlumpLinearisationSetUp(SlumpProblem, MPI_Comm, PetscBool *sv);
