@@ -169,6 +169,11 @@ PetscErrorCode SlumpSceneCreateMesh(SlumpScene scene, MPI_Comm comm, const Petsc
     PetscCheck(!has_file, comm, PETSC_ERR_USER_INPUT, "-mesh_file needs a file name");
     PetscCall(SlumpMeshCreateRectangle(comm, nx, ny, lower, upper, dm));
   }
+  /* the mesh is distributed already (SlumpMeshDistribute, METIS with a fixed
+     seed): without this DMSetFromOptions repartitions it with PETSc's default
+     parallel partitioner, whose partition changes from run to run (2-rank
+     results then differed between runs) */
+  PetscCall(DMPlexDistributeSetDefault(*dm, PETSC_FALSE));
   PetscCall(DMSetFromOptions(*dm));
   PetscCall(DMViewFromOptions(*dm, NULL, "-dm_view"));
   PetscFunctionReturn(0);
