@@ -17,7 +17,7 @@
 static const char *const PetscGlobal[] = {"help", "version", "options_", "log_", "malloc", "memory_", "objects_", "info", "on_error_", "no_signal_handler", "fp_trap", "check_pointer", "viewer_", "skip_petscrc", "nox", "display", "saws", "mpi_", "stop_for_debugger", "start_in_debugger", "debugger", "error_output", "use_gpu_aware_mpi", "device_", "checkstack", "sleep", "get_total_flops", "history", "python", "citations", "slepc_", "petsc_", "tmp", "shared_tmp", "not_shared_tmp", "use_", "compare", "vecscatter_", NULL};
 /* Prefixes of the PETSc and SLEPc objects slump creates, whose options are
    read when the object is set up (possibly during the run). */
-static const char *const Created[] = {"ksp_", "pc_", "mat_", "sub_", "fieldsplit_", "mg_", "dm_", "petscspace_", "petscdualspace_", "petscfe_", "petscpartitioner_", "petscsection_", "vec_", "sf_", "eps_", "st_", "bv_", "ds_", "rg_", "fn_", "is_", "mat_mumps_", "pc_hypre_", "alg2_ksp_", "alg2_pc_", "alg2_mat_", NULL};
+static const char *const Created[] = {"ksp_", "pc_", "mat_", "sub_", "fieldsplit_", "mg_", "dm_", "petscspace_", "petscdualspace_", "petscfe_", "petscpartitioner_", "petscsection_", "vec_", "sf_", "eps_", "st_", "bv_", "ds_", "rg_", "fn_", "is_", "mat_mumps_", "pc_hypre_", "alg2_ksp_", "alg2_pc_", "alg2_mat_", "ic_ksp_", "ic_pc_", "ic_mat_", "ic_sub_", "ic_fieldsplit_", NULL};
 /* Objects slump does not create: its nonlinear solvers are KINSOL and IDA. */
 static const char *const NotCreated[][2] = {
   {"snes_",           "SNES (slump's Newton solver is KINSOL: -newton_* options)"                    },

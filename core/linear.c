@@ -97,15 +97,17 @@ static PetscErrorCode StokesSetUp(SlumpProblem prob)
   PetscInt f;
   DM       dmU;
   PetscFunctionBeginUser;
-  if (prob->isU) PetscFunctionReturn(0);
-  f = 0;
-  PetscCall(DMCreateSubDM(prob->dm, 1, &f, &prob->isU, &dmU));
-  PetscCall(DMPlexCreateRigidBody(dmU, 0, &prob->nearNull));
-  PetscCall(PetscObjectCompose((PetscObject)prob->isU, "nearnullspace", (PetscObject)prob->nearNull));
-  PetscCall(DMDestroy(&dmU));
-  f = 1;
-  PetscCall(DMCreateSubDM(prob->dm, 1, &f, &prob->isP, &prob->dmP));
-  if (prob->schurPre == SLUMP_SCHUR_PRE_MASS) {
+  if (!prob->isU) {
+    f = 0;
+    PetscCall(DMCreateSubDM(prob->dm, 1, &f, &prob->isU, &dmU));
+    PetscCall(DMPlexCreateRigidBody(dmU, 0, &prob->nearNull));
+    PetscCall(PetscObjectCompose((PetscObject)prob->isU, "nearnullspace", (PetscObject)prob->nearNull));
+    PetscCall(DMDestroy(&dmU));
+    f = 1;
+    PetscCall(DMCreateSubDM(prob->dm, 1, &f, &prob->isP, &prob->dmP));
+  }
+  /* the consistent initialisation (selfp) may have come first */
+  if (prob->schurPre == SLUMP_SCHUR_PRE_MASS && !prob->Sp) {
     PetscCall(DMSetMatType(prob->dmP, MATAIJ));
     PetscCall(DMCreateMatrix(prob->dmP, &prob->Sp));
     PetscCall(MatSetOption(prob->Sp, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
@@ -265,6 +267,29 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
   }
   PetscCall(KSPGMRESSetRestart(ksp, 100));
   PetscCall(KSPSetFromOptions(ksp));
+  PetscFunctionReturn(0);
+}
+
+/* The KSP of the consistent initialisation (SlumpConsistentInitialConditions:
+   the mass matrix, or [rho M, B^T; B, 0] with the pressure): LU with
+   -linear_solver direct; with iterative the problem's iterative solver,
+   its Schur complement preconditioned by selfp whatever -stokes_schur_pre
+   says: B diag(rho M)^-1 B^T is spectrally equivalent to this Schur
+   complement, the viscosity-weighted pressure mass is not. Options take
+   ksp's prefix (ic_). */
+PetscErrorCode SlumpProblemConfigureInitKSP(SlumpProblem prob, KSP ksp)
+{
+  PetscInt  sp   = prob->schurPre;
+  PetscBool conf = prob->linConfigured;
+  PetscFunctionBeginUser;
+  if (!prob->linIterative) {
+    PetscCall(SlumpKSPSetDirect(ksp));
+    PetscFunctionReturn(0);
+  }
+  prob->schurPre = SLUMP_SCHUR_PRE_SELFP;
+  PetscCall(SlumpProblemConfigureKSP(prob, ksp));
+  prob->schurPre      = sp;
+  prob->linConfigured = conf;
   PetscFunctionReturn(0);
 }
 

@@ -794,18 +794,28 @@ def linear_iterative_levelset(w, ranks_iter=1):
     viscosity ratios 1e-3) to t = 0.05 s: LU on one rank against
     -linear_solver iterative (flow by the Schur fieldsplit with selfp, level
     set by ILU, block Gauss-Seidel) on ranks_iter ranks: front, axis height,
-    potential and kinetic energy within 10 rtol relative."""
+    potential and kinetic energy within max(10 rtol, 3 e_LU) relative, where
+    e_LU = |LU(rtol) - LU(rtol / 10)| is LU's own time-integration error.
+    Two adaptive runs whose linear solves differ at the Krylov tolerance take
+    different steps and reinitialise the level set at different times, so
+    they differ by the integration error, not by the Krylov tolerance:
+    measured, the kinetic energy of LU moves by 7.0e-4 from rtol 1e-4 to
+    1e-5 (3.7e-4 for rtol x 1.001) and the iterative run's by 1.5e-3 from
+    LU's (8.3e-5 from LU at 1e-5)."""
     opts = ["-mesh_nx", "21", "-mesh_ny", "22", "-time_final", "0.05", "-output_fields", "0"]
     run("dam_break", opts, os.path.join(w, "dam_break_direct"))
+    a = summary(os.path.join(w, "dam_break_direct"))
+    run("dam_break", opts + ["-time_rtol", repr(a["rtol"] / 10)], os.path.join(w, "dam_break_direct_tight"))
     run("dam_break", opts + ["-linear_solver", "iterative"], os.path.join(w, "dam_break_iterative"), ranks=ranks_iter)
-    a, b = summary(os.path.join(w, "dam_break_direct")), summary(os.path.join(w, "dam_break_iterative"))
+    r, b = summary(os.path.join(w, "dam_break_direct_tight")), summary(os.path.join(w, "dam_break_iterative"))
     print("dam_break 21 x 22 to t = 0.05: iterative on %d rank(s): %d Krylov iterations for %d solves (%.1f per solve), %d steps (LU %d)" % (
         b["ranks"], b["lin_its"], b["lin_solves"], b["lin_its"] / max(b["lin_solves"], 1), b["steps"], a["steps"]))
     for k in ("front", "height_axis", "potential_energy", "kinetic_energy"):
-        rel = abs(a[k] - b[k]) / abs(a[k])
-        print("  %-17s LU %.10e  iterative %.10e  rel diff %.2e" % (k, a[k], b[k], rel))
-        if not rel <= 10 * a["rtol"]:
-            fail("dam_break %s: iterative and LU differ by %g relative, expected <= 10 rtol = %g" % (k, rel, 10 * a["rtol"]))
+        rel, e_lu = abs(a[k] - b[k]) / abs(a[k]), abs(a[k] - r[k]) / abs(a[k])
+        tol = max(10 * a["rtol"], 3 * e_lu)
+        print("  %-17s LU %.10e  iterative %.10e  rel diff %.2e (LU's integration error %.2e, tolerance %.2e)" % (k, a[k], b[k], rel, e_lu, tol))
+        if not rel <= tol:
+            fail("dam_break %s: iterative and LU differ by %g relative, expected <= max(10 rtol, 3 x LU's integration error) = %g" % (k, rel, tol))
 
 
 def test_linear_iterative():
@@ -909,18 +919,22 @@ def test_reproducible_parallel():
     """Two 2-rank runs of the same command give the same bytes in their
     result files, with -linear_solver iterative (whose Krylov counts react to
     any change of partition or roundoff): duct_cessation to t = 0.01 (IDA,
-    BoomerAMG; steps.csv and series.csv) and the steady Bingham Poiseuille
-    (KINSOL, Schur fieldsplit; series.csv and yield_map.csv). Until
-    DMSetFromOptions was told not to redistribute, PETSc's default
-    partitioner replaced the METIS partition with one that changed from run
-    to run, and so did the Krylov counts, the steps and the results (the
-    dam break's kinetic energy at t = 0.05 moved within 4e-4 ... 1.5e-3 of
-    LU's). Scenes whose consistent initialisation is solved by MUMPS on 2
-    ranks (the dam break) are left out: MUMPS's roundoff may change between
-    runs, which moves t in steps.csv in the last printed digit."""
+    BoomerAMG; steps.csv and series.csv), the steady Bingham Poiseuille
+    (KINSOL, Schur fieldsplit; series.csv and yield_map.csv) and the
+    two-phase dam break 21 x 22 to t = 0.01 (level set, block Gauss-Seidel;
+    steps.csv, series.csv, interface.csv). Until DMSetFromOptions was told
+    not to redistribute, PETSc's default partitioner replaced the METIS
+    partition with one that changed from run to run, and so did the Krylov
+    counts, the steps and the results (the dam break's kinetic energy at
+    t = 0.05 moved within 4e-4 ... 1.5e-3 of LU's); and until the consistent
+    initialisation followed -linear_solver iterative, its LU by MUMPS changed
+    the dam break's roundoff (t in steps.csv, last digit) between runs.
+    LU by MUMPS on 2 ranks is not tested: its roundoff may change between
+    runs on a loaded machine."""
     w = work("reproducible_parallel")
     cases = (("duct_cessation", ["-time_final", "0.01"], ("steps.csv", "series.csv")),
-             ("poiseuille", ["-rheology_papanastasiou_m", "1e4", "-steady_continuation_start", "1e2"], ("series.csv", "yield_map.csv")))
+             ("poiseuille", ["-rheology_papanastasiou_m", "1e4", "-steady_continuation_start", "1e2"], ("series.csv", "yield_map.csv")),
+             ("dam_break", ["-mesh_nx", "21", "-mesh_ny", "22", "-time_final", "0.01"], ("steps.csv", "series.csv", "interface.csv")))
     for scene, opts, files in cases:
         out = []
         for k in (1, 2):

@@ -44,6 +44,30 @@ static int IdaRoot(realtype t, N_Vector yy, N_Vector yp, realtype *gout, void *u
   return SlumpSundialsStatus(SlumpIntegratorArrestFunctions(u->ti, t, N_VGetVector_Petsc(yy), gout));
 }
 
+/* A solve of the consistent initialisation. With -linear_solver iterative
+   a Krylov solve that fails is repeated by LU (MUMPS), which then serves
+   the remaining solve too; one line says so. */
+static PetscErrorCode InitSolve(KSP ksp, Vec F, Vec W)
+{
+  KSPConvergedReason reason;
+  PetscBool          direct;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)ksp);
+  PetscFunctionBeginUser;
+  PetscCall(KSPSolve(ksp, F, W));
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &direct));
+  if (reason < 0 && !direct) {
+    PetscInt its;
+    PetscCall(KSPGetIterationNumber(ksp, &its));
+    PetscCall(PetscPrintf(comm, "consistent initialisation: the Krylov solve stopped (%s after %" PetscInt_FMT " iterations); solved by LU (MUMPS) instead\n", KSPConvergedReasons[reason], its));
+    PetscCall(SlumpKSPSetDirect(ksp));
+    PetscCall(KSPSolve(ksp, F, W));
+    PetscCall(KSPGetConvergedReason(ksp, &reason));
+  }
+  PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed (KSP reason %s)", KSPConvergedReasons[reason]);
+  PetscFunctionReturn(0);
+}
+
 /* Consistent initial data for the index-2 DAE, with one saddle-point
  * operator [rho M, B^T; B, 0] (SlumpProblemInitJacobian), factored once:
  * 1. if the velocity violates the discrete continuity equation with the
@@ -58,7 +82,6 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
   Mat                J;
   KSP                ksp;
   IS                 isu, isp;
-  KSPConvergedReason reason;
   MPI_Comm           comm = PetscObjectComm((PetscObject)X);
   PetscFunctionBeginUser;
   PetscCall(SlumpProblemGetFieldIS(prob, &isu, &isp));
@@ -73,7 +96,7 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
   PetscCall(SlumpProblemInitJacobian(prob, t, X, J));
   PetscCall(KSPCreate(comm, &ksp));
   PetscCall(KSPSetOptionsPrefix(ksp, "ic_"));
-  PetscCall(SlumpKSPSetDirect(ksp));
+  PetscCall(SlumpProblemConfigureInitKSP(prob, ksp));
   PetscCall(KSPSetOperators(ksp, J, J));
   if (isp) {
     PetscReal nf, nu, ndu;
@@ -84,9 +107,7 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
     PetscCall(VecNorm(F, NORM_INFINITY, &nf));
     if (nf > 0) {
       PetscCall(VecScale(F, -1.0));
-      PetscCall(KSPSolve(ksp, F, W));
-      PetscCall(KSPGetConvergedReason(ksp, &reason));
-      PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The divergence-free projection of the initial velocity failed (KSP reason %s)", KSPConvergedReasons[reason]);
+      PetscCall(InitSolve(ksp, F, W));
       /* only the velocity moves: the pressure part is the impulse, and an
          extra field's part (a level set's phi_t) is not a correction */
       PetscCall(VecGetSubVector(W, isu, &subw));
@@ -108,9 +129,7 @@ PetscErrorCode SlumpConsistentInitialConditions(SlumpProblem prob, PetscReal t, 
     PetscCall(VecRestoreSubVector(F, isp, &sub));
   }
   PetscCall(VecScale(F, -1.0));
-  PetscCall(KSPSolve(ksp, F, W));
-  PetscCall(KSPGetConvergedReason(ksp, &reason));
-  PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed (KSP reason %s)", KSPConvergedReasons[reason]);
+  PetscCall(InitSolve(ksp, F, W));
   /* X_p = w_p, Xdot = (w_u, 0) */
   if (isp) {
     PetscCall(VecGetSubVector(X, isp, &sub));
