@@ -92,7 +92,7 @@ static PetscErrorCode SetDefault(KSP ksp, const char name[], const char value[])
 
 /* The split's index sets, the velocity's rigid-body modes and the Schur
    preconditioner's matrix, made once per problem. */
-static PetscErrorCode StokesSetUp(SlumpProblem prob)
+static PetscErrorCode StokesSetUp(SlumpProblem prob, PetscInt schurPre)
 {
   PetscInt f;
   DM       dmU;
@@ -107,7 +107,7 @@ static PetscErrorCode StokesSetUp(SlumpProblem prob)
     PetscCall(DMCreateSubDM(prob->dm, 1, &f, &prob->isP, &prob->dmP));
   }
   /* the consistent initialisation (selfp) may have come first */
-  if (prob->schurPre == SLUMP_SCHUR_PRE_MASS && !prob->Sp) {
+  if (schurPre == SLUMP_SCHUR_PRE_MASS && !prob->Sp) {
     PetscCall(DMSetMatType(prob->dmP, MATAIJ));
     PetscCall(DMCreateMatrix(prob->dmP, &prob->Sp));
     PetscCall(MatSetOption(prob->Sp, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_FALSE));
@@ -163,7 +163,7 @@ static PetscErrorCode LevelSetSetUp(SlumpProblem prob)
 /* The flow's preconditioner on ksp's PC: BoomerAMG for one scalar velocity;
    the Schur fieldsplit over the velocity isU and the pressure isP (numbered
    in ksp's operator) for velocity-pressure. Defaults use ksp's prefix. */
-static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, KSP ksp, IS isU, IS isP)
+static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, PetscInt schurPre, KSP ksp, IS isU, IS isP)
 {
   PC pc;
   PetscFunctionBeginUser;
@@ -181,7 +181,7 @@ static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, KSP ksp, IS isU, IS isP
   PetscCall(PCFieldSplitSetIS(pc, "p", isP));
   PetscCall(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR));
   PetscCall(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER));
-  if (prob->schurPre == SLUMP_SCHUR_PRE_MASS) PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, prob->Sp));
+  if (schurPre == SLUMP_SCHUR_PRE_MASS) PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, prob->Sp));
   else PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, NULL));
   PetscCall(SetDefault(ksp, "fieldsplit_u_ksp_type", "preonly"));
 #if defined(PETSC_HAVE_HYPRE)
@@ -208,20 +208,17 @@ static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, KSP ksp, IS isU, IS isP
   PetscCall(SetDefault(ksp, "fieldsplit_p_ksp_type", "preonly"));
   /* the weighted mass is spectrally a diagonal; B diag(A)^-1 B^T is a
      Laplacian (weighted by 1/(rho cj + eta h^-2)) */
-  PetscCall(SetDefault(ksp, "fieldsplit_p_pc_type", prob->schurPre == SLUMP_SCHUR_PRE_MASS ? "jacobi" : SLUMP_AMG));
+  PetscCall(SetDefault(ksp, "fieldsplit_p_pc_type", schurPre == SLUMP_SCHUR_PRE_MASS ? "jacobi" : SLUMP_AMG));
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
+/* ksp as the problem's iterative solver, with the Schur preconditioner
+   schurPre (SLUMP_SCHUR_PRE_*) for velocity-pressure */
+static PetscErrorCode ConfigureIterative(SlumpProblem prob, PetscInt schurPre, KSP ksp)
 {
   PC pc;
   PetscFunctionBeginUser;
-  prob->linConfigured = PETSC_TRUE;
-  if (!prob->linIterative) {
-    PetscCall(SlumpKSPSetDirect(ksp));
-    PetscFunctionReturn(0);
-  }
-  PetscCheck(!prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || prob->schurPre == SLUMP_SCHUR_PRE_SELFP, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp");
+  PetscCheck(!prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || schurPre == SLUMP_SCHUR_PRE_SELFP, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp");
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(SetDefault(ksp, "ksp_rtol", "1e-10"));
   /* no cap below PETSc's 10000: with 1000 one solve of the steady Bingham
@@ -240,7 +237,7 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
        level set by ILU(0); FGMRES outside */
     KSP     *sub;
     PetscInt ns;
-    if (prob->formulation == SLUMP_FORMULATION_PLANE) PetscCall(StokesSetUp(prob));
+    if (prob->formulation == SLUMP_FORMULATION_PLANE) PetscCall(StokesSetUp(prob, schurPre));
     PetscCall(LevelSetSetUp(prob));
     PetscCall(KSPSetType(ksp, KSPFGMRES));
     PetscCall(PCSetType(pc, PCFIELDSPLIT));
@@ -248,7 +245,7 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
     PetscCall(PCFieldSplitSetIS(pc, "flow", prob->isF));
     PetscCall(PCFieldSplitSetIS(pc, "levelset", prob->isX));
     PetscCall(PCFieldSplitGetSubKSP(pc, &ns, &sub));
-    PetscCall(ConfigureFlowPC(prob, sub[0], prob->isUF, prob->isPF));
+    PetscCall(ConfigureFlowPC(prob, schurPre, sub[0], prob->isUF, prob->isPF));
     {
       PC pcx;
       PetscCall(KSPGetPC(sub[1], &pcx));
@@ -260,13 +257,22 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
       PetscCall(KSPSetType(ksp, KSPGMRES));
       PetscCall(KSPSetPCSide(ksp, PC_RIGHT));
     } else {
-      PetscCall(StokesSetUp(prob));
+      PetscCall(StokesSetUp(prob, schurPre));
       PetscCall(KSPSetType(ksp, KSPFGMRES));
     }
-    PetscCall(ConfigureFlowPC(prob, ksp, prob->isU, prob->isP));
+    PetscCall(ConfigureFlowPC(prob, schurPre, ksp, prob->isU, prob->isP));
   }
   PetscCall(KSPGMRESSetRestart(ksp, 100));
   PetscCall(KSPSetFromOptions(ksp));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
+{
+  PetscFunctionBeginUser;
+  prob->linConfigured = PETSC_TRUE;
+  if (prob->linIterative) PetscCall(ConfigureIterative(prob, prob->schurPre, ksp));
+  else PetscCall(SlumpKSPSetDirect(ksp));
   PetscFunctionReturn(0);
 }
 
@@ -279,17 +285,9 @@ PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp)
    ksp's prefix (ic_). */
 PetscErrorCode SlumpProblemConfigureInitKSP(SlumpProblem prob, KSP ksp)
 {
-  PetscInt  sp   = prob->schurPre;
-  PetscBool conf = prob->linConfigured;
   PetscFunctionBeginUser;
-  if (!prob->linIterative) {
-    PetscCall(SlumpKSPSetDirect(ksp));
-    PetscFunctionReturn(0);
-  }
-  prob->schurPre = SLUMP_SCHUR_PRE_SELFP;
-  PetscCall(SlumpProblemConfigureKSP(prob, ksp));
-  prob->schurPre      = sp;
-  prob->linConfigured = conf;
+  if (prob->linIterative) PetscCall(ConfigureIterative(prob, SLUMP_SCHUR_PRE_SELFP, ksp));
+  else PetscCall(SlumpKSPSetDirect(ksp));
   PetscFunctionReturn(0);
 }
 

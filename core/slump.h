@@ -419,6 +419,8 @@ PETSC_EXTERN PetscErrorCode SlumpKSPSetDirect(KSP ksp);
 /* The KSP of the problem's Newton steps: direct (SlumpKSPSetDirect) or, with
    -linear_solver iterative, Krylov + multigrid (core/linear.c) */
 PETSC_EXTERN PetscErrorCode SlumpProblemConfigureKSP(SlumpProblem prob, KSP ksp);
+/* The KSP of the consistent initialisation: as SlumpProblemConfigureKSP,
+   with the Schur complement by selfp (core/linear.c) */
 PETSC_EXTERN PetscErrorCode SlumpProblemConfigureInitKSP(SlumpProblem prob, KSP ksp);
 /* KSPSolve with the problem's escalation (core/linear.c): with -linear_solver
    iterative on velocity-pressure, a solve that passes -linear_escalate_its
