@@ -17,9 +17,10 @@ same mesh (so the discretisation error cancels):
   - cost: wall time, residual evaluations, Newton (ALG2) iterations.
 Cases: duct (Mosolov) Bn 0.1 and 0.2 on 16 x 16 and 32 x 32 cells; plane
 Poiseuille Bn 0.3 on 32 cells across; the lid-driven cavity on 32 x 32
-cells at Bn 1.392 and 14.04 (Vola et al.'s yield stresses 1.968 and 19.86).
+cells at Bn 1.392 and 14.04 (Vola et al.'s yield stresses 1.968 and 19.86),
+and at Bn 1.392 with inertia, Re 1000.
 
-usage: python3 cases/study_exact.py [--slump build/slump] [--out out/studies]
+usage: python3 cases/study_exact.py [--slump build/slump] [--out out/studies] [--only SUBSTRING]
 Writes <out>/exact_<case>.csv, exact_flow_<case>.png and exact_plug_<case>.png
 (gnuplot), and prints the tables (docs/exact.md quotes them).
 """
@@ -37,6 +38,7 @@ CASES = [
     ("poiseuille_bn0.3_32", "poiseuille", ["-bn", "0.3"]),
     ("cavity_bn1.39_32", "cavity", ["-bn", "1.3918808", "-output_yield_map", "0"]),
     ("cavity_bn14.0_32", "cavity", ["-bn", "14.044999", "-output_yield_map", "0"]),
+    ("cavity_re1000_bn1.39_32", "cavity", ["-bn", "1.3918808", "-re", "1000", "-output_yield_map", "0"]),
 ]
 PAPANASTASIOU = [1e1, 1e2, 1e3, 1e4, 1e5, 1e6]
 BERCOVIER = [1e-1, 1e-2, 1e-3, 1e-4, 1e-5, 1e-6]
@@ -91,10 +93,13 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--slump", default="build/slump")
     ap.add_argument("--out", default="out/studies")
+    ap.add_argument("--only", default="", help="run only the cases whose name contains this")
     a = ap.parse_args()
     slump = os.path.abspath(a.slump)
     os.makedirs(a.out, exist_ok=True)
     for name, scene, opts in CASES:
+        if a.only not in name:
+            continue
         ex = run(slump, scene, opts + ["-method", "exact"])
         if ex is None:
             continue

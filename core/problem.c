@@ -117,6 +117,13 @@ PetscErrorCode SlumpProblemSetDensity(SlumpProblem prob, PetscReal rho)
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpProblemGetDensity(SlumpProblem prob, PetscReal *rho)
+{
+  PetscFunctionBeginUser;
+  *rho = prob->rho;
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemSetBodyForce(SlumpProblem prob, PetscReal gx, PetscReal gy)
 {
   PetscFunctionBeginUser;

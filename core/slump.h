@@ -152,6 +152,7 @@ PETSC_EXTERN PetscErrorCode SlumpProblemGetFormulation(SlumpProblem prob, SlumpF
 PETSC_EXTERN PetscErrorCode SlumpProblemSetEffects(SlumpProblem prob, PetscInt effects);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetEffects(SlumpProblem prob, PetscInt *effects);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetDensity(SlumpProblem prob, PetscReal rho);
+PETSC_EXTERN PetscErrorCode SlumpProblemGetDensity(SlumpProblem prob, PetscReal *rho);
 PETSC_EXTERN PetscErrorCode SlumpProblemSetBodyForce(SlumpProblem prob, PetscReal gx, PetscReal gy);
 PETSC_EXTERN PetscErrorCode SlumpProblemGetRheology(SlumpProblem prob, SlumpRheology *rheo);
 /* Dirichlet velocity on every face of label `label`: components comps[ncomp]

@@ -28,6 +28,10 @@
 #include "timeintimpl.h"
 #include "slumprheology.h"
 
+/* iterations between refreshed u-step Jacobians when the u-step is
+   nonlinear (convection) */
+#define SLUMP_ALG2_CHORD 20
+
 struct _n_SlumpExactSolver {
   SlumpProblem prob;
   MPI_Comm     comm;
@@ -42,7 +46,7 @@ struct _n_SlumpExactSolver {
   KSP          ksp;
   Vec          F, Flin, dX, Xdot;
   IS           isu;
-  PetscBool    factored;
+  PetscBool    factored, nonlin;
   PetscInt     its, solves, factorisations, lin_its, last_its;
   PetscReal    last_res;
 };
@@ -100,7 +104,7 @@ PetscErrorCode SlumpExactCheckProblem(SlumpProblem prob)
   PetscCall(SlumpProblemGetFormulation(prob, &form));
   PetscCheck(form == SLUMP_FORMULATION_PLANE || form == SLUMP_FORMULATION_ANTIPLANE, comm, PETSC_ERR_USER_INPUT, "-method exact needs a flow problem (plane or anti-plane), not a transport one");
   PetscCall(SlumpProblemGetEffects(prob, &effects));
-  PetscCheck(!(effects & (SLUMP_EFFECT_CONVECTION | SLUMP_EFFECT_FREE_SURFACE)), comm, PETSC_ERR_USER_INPUT, "-method exact is implemented for Stokes-type flows (inertia, body force) of one material; this scene has %s", effects & SLUMP_EFFECT_CONVECTION ? "convection" : "a free surface");
+  PetscCheck(!(effects & SLUMP_EFFECT_FREE_SURFACE), comm, PETSC_ERR_USER_INPUT, "-method exact is implemented for flows of one material (inertia, convection, body force); this scene has a free surface");
   PetscCall(SlumpProblemGetTwoPhase(prob, &tp, NULL, NULL, NULL));
   PetscCall(SlumpProblemHasWallFriction(prob, &fr));
   PetscCheck(!tp && !fr, comm, PETSC_ERR_USER_INPUT, "-method exact is implemented for one material with no-slip or free-slip walls; this scene has %s", tp ? "two phases" : "wall friction");
@@ -126,6 +130,11 @@ PetscErrorCode SlumpExactSolverCreate(SlumpProblem prob, Vec X, SlumpExactSolver
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpProblemGetFormulation(prob, &form));
   s->plane = form == SLUMP_FORMULATION_PLANE ? PETSC_TRUE : PETSC_FALSE;
+  {
+    PetscInt effects;
+    PetscCall(SlumpProblemGetEffects(prob, &effects));
+    s->nonlin = (effects & SLUMP_EFFECT_CONVECTION) ? PETSC_TRUE : PETSC_FALSE;
+  }
   PetscCall(SlumpRheologyGetParameter(rheo, "viscosity", &s->eta));
   {
     PetscBool has;
@@ -238,13 +247,14 @@ PetscErrorCode SlumpExactSolverSolve(SlumpExactSolver s, PetscReal t, PetscReal 
   SlumpProblem prob = s->prob;
   PetscReal    rho = 1.0, L = 1.0, r;
   PetscReal    tol;
-  PetscInt     k, klast = 0, klin = 0;
+  PetscInt     k, klast = 0, klin = 0, kfact = 0;
+  PetscReal    dxprev = 1.0, rmin = 0.0;
   PetscBool    fresh = PETSC_TRUE;
   PetscBool    monitor = PETSC_FALSE;
   PetscFunctionBeginUser;
   /* option -alg2_monitor late: print ALG2's primal and dual residuals at every iteration */
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-alg2_monitor", &monitor, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-density", &rho, NULL));
+  PetscCall(SlumpProblemGetDensity(prob, &rho));
   {
     PetscReal area;
     PetscCall(SlumpProblemGetArea(prob, &area));
@@ -257,9 +267,13 @@ PetscErrorCode SlumpExactSolverSolve(SlumpExactSolver s, PetscReal t, PetscReal 
   if (s->tau0 > 0) PetscCall(SlumpProblemSetRheologyParameter(prob, "yield_stress", 0.0));
   *converged = PETSC_FALSE;
   for (k = 1; k <= s->maxit; ++k) {
-    PetscReal gn, ln, res, dual, gsc, ssc;
+    PetscReal gn, ln, res, dual, gsc, ssc, dxrel = 0.0;
     PetscInt  lits;
-    if (!s->factored || alpha != s->alpha || r != s->rfact) {
+    /* with convection the u-step is nonlinear: one Newton step per
+       iteration, with a fresh Jacobian while the velocity still moves by
+       more than 1 % per iteration, then a chord step with the Jacobian
+       refreshed every SLUMP_ALG2_CHORD iterations */
+    if (!s->factored || alpha != s->alpha || r != s->rfact || (s->nonlin && (dxprev > 1e-2 || k - kfact >= SLUMP_ALG2_CHORD))) {
       /* the u-step's matrix: the problem's Jacobian, Newtonian with eta + r */
       PetscCall(SlumpProblemSetRheologyParameter(prob, "viscosity", s->eta + r));
       if (beta) PetscCall(VecAXPBYPCZ(s->Xdot, alpha, 1.0, 0.0, X, beta));
@@ -270,6 +284,7 @@ PetscErrorCode SlumpExactSolverSolve(SlumpExactSolver s, PetscReal t, PetscReal 
       s->alpha    = alpha;
       s->rfact    = r;
       s->factorisations++;
+      kfact = k;
       fresh = PETSC_TRUE;
     }
     /* the u-step's residual is affine in u with the factored matrix as its
@@ -279,7 +294,7 @@ PetscErrorCode SlumpExactSolverSolve(SlumpExactSolver s, PetscReal t, PetscReal 
     /* time steps assemble at every iteration: with the update the
        Poiseuille cessation stopped at 0.168 instead of 0.148 (CI, not yet
        understood) */
-    if (fresh || beta || (k - klin) >= 50) {
+    if (fresh || beta || s->nonlin || (k - klin) >= 50) {
       if (beta) PetscCall(VecAXPBYPCZ(s->Xdot, alpha, 1.0, 0.0, X, beta));
       PetscCall(SlumpProblemResidual(prob, t, X, beta ? s->Xdot : NULL, s->Flin));
       klin  = k;
@@ -293,6 +308,12 @@ PetscErrorCode SlumpExactSolverSolve(SlumpExactSolver s, PetscReal t, PetscReal 
     s->lin_its += lits;
     s->solves++;
     PetscCall(VecAXPY(X, -1.0, s->dX));
+    if (s->nonlin) {
+      PetscReal dxn, xn;
+      PetscCall(VecNorm(s->dX, NORM_2, &dxn));
+      PetscCall(VecNorm(X, NORM_2, &xn));
+      dxrel = dxn / PetscMax(xn, PETSC_SMALL);
+    }
     PetscCall(MatMult(s->J, s->dX, s->F));
     PetscCall(VecAXPY(s->Flin, -1.0, s->F));
     PetscCall(SlumpProblemComputeQuadratureStrainRate(prob, t, X, s->g));
@@ -323,18 +344,37 @@ PetscErrorCode SlumpExactSolverSolve(SlumpExactSolver s, PetscReal t, PetscReal 
     gsc         = PetscMax(PetscMax(gn, gref), PETSC_SMALL);
     ssc         = PetscMax(ln + s->eta * gsc, PETSC_SMALL);
     s->last_res = PetscMax(res / gsc, dual / ssc);
-    if (monitor) PetscCall(PetscPrintf(s->comm, "  alg2 %5" PetscInt_FMT " r %.3e primal %.3e dual %.3e\n", k, (double)r, (double)(res / gsc), (double)(dual / ssc)));
-    if (res <= tol * gsc && dual <= tol * ssc) {
+    if (s->nonlin) s->last_res = PetscMax(s->last_res, dxrel);
+    if (PetscIsInfOrNanReal(s->last_res)) break;
+    dxprev = dxrel;
+    /* with convection the u-step's Reynolds number rho U L/(eta + r) is
+       kept at most 50 (U the largest velocity after the first u-step):
+       Newton's method from the previous iterate diverged above it (the
+       cavity at Re 1000, Bn 14 with r = 1) */
+    if (s->nonlin && k == 1 && s->r <= 0) {
+      Vec       U;
+      PetscReal umax;
+      PetscCall(VecGetSubVector(X, s->isu, &U));
+      PetscCall(VecNorm(U, NORM_INFINITY, &umax));
+      PetscCall(VecRestoreSubVector(X, s->isu, &U));
+      rmin = rho * umax * L / 50.0 - s->eta;
+      if (r < rmin) r = rmin;
+    }
+    if (monitor && s->nonlin) PetscCall(PetscPrintf(s->comm, "  alg2 %5" PetscInt_FMT " r %.3e primal %.3e dual %.3e u-step update %.3e\n", k, (double)r, (double)(res / gsc), (double)(dual / ssc), (double)dxrel));
+    else if (monitor) PetscCall(PetscPrintf(s->comm, "  alg2 %5" PetscInt_FMT " r %.3e primal %.3e dual %.3e\n", k, (double)r, (double)(res / gsc), (double)(dual / ssc)));
+    /* with convection the u-step's chord iteration must have converged too:
+       its last update below tol relative to the state */
+    if (res <= tol * gsc && dual <= tol * ssc && dxrel <= tol) {
       *converged = PETSC_TRUE;
       break;
     }
     /* residual balancing (Boyd et al. 2011, section 3.4.1): r up when the
        constraint lags, down when the stationarity does; at most every 10
        iterations, as each change costs a factorisation */
-    if (s->adapt && k - klast >= 10) {
+    if (s->adapt && k - klast >= 10 && dxrel <= PetscMax(res / gsc, dual / ssc)) {
       const PetscReal p = res / gsc, d = dual / ssc;
       if (p > 10.0 * d || d > 10.0 * p) {
-        r     = p > d ? 2.0 * r : 0.5 * r;
+        r     = p > d ? 2.0 * r : PetscMax(0.5 * r, rmin);
         klast = k;
       }
     }
