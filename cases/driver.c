@@ -396,6 +396,7 @@ PetscErrorCode SlumpRunOne(MPI_Comm comm, PetscBool banner, SlumpRunResult *res)
     }
   }
   if (exact) PetscCall(SlumpExactCheckProblem(prob)); /* before anything is written */
+  else if (scene->steady) PetscCall(SlumpSteadyCheckOptions(prob));
   if (banner) {
     PetscCall(PetscPrintf(comm, "slump %s: scene %s on %d rank%s\n", SLUMP_VERSION_STRING, scenename, (int)size, size > 1 ? "s" : ""));
     PetscCall(SlumpProblemView(prob, PETSC_VIEWER_STDOUT_(comm)));

@@ -114,6 +114,7 @@ PetscErrorCode SlumpProblemSetDensity(SlumpProblem prob, PetscReal rho)
   PetscFunctionBeginUser;
   PetscCheck(rho > 0.0, prob->comm, PETSC_ERR_USER_INPUT, "-density must be positive; got %g", (double)rho);
   prob->rho = rho;
+  if (prob->setup) PetscCall(SlumpProblemSetConstantsAll(prob)); /* a continuation in the Reynolds number */
   PetscFunctionReturn(0);
 }
 

@@ -246,32 +246,84 @@ PetscErrorCode SlumpLinearisationSetUp(SlumpProblem prob, MPI_Comm comm, PetscBo
   PetscFunctionReturn(0);
 }
 
+/* -steady_* and -newton_monitor, read and checked (also before anything is
+   written, by SlumpSteadyCheckOptions) */
+typedef struct {
+  PetscReal start, factor;
+  PetscInt  nrho;
+  PetscBool set, monitor;
+} SteadyOptions;
+
+static PetscErrorCode SteadyReadOptions(SlumpProblem prob, MPI_Comm comm, SteadyOptions *o)
+{
+  SlumpRheology rheo;
+  const char   *regname;
+  PetscReal     target;
+  PetscBool     larger_stiffer;
+  PetscInt      effects;
+  PetscFunctionBeginUser;
+  o->start   = 0.0;
+  o->factor  = 10.0;
+  o->nrho    = 1;
+  o->monitor = PETSC_FALSE;
+  PetscCall(SlumpProblemGetRheology(prob, &rheo));
+  PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &larger_stiffer));
+  PetscOptionsBegin(comm, NULL, "Steady solve", "SlumpSteadySolve");
+  PetscCall(PetscOptionsReal("-steady_continuation_start", "First value of the regularisation parameter (continuation towards the model's value)", "", o->start, &o->start, &o->set));
+  PetscCall(PetscOptionsBool("-newton_monitor", "Print max|F| at every Newton iterate", "", o->monitor, &o->monitor, NULL));
+  PetscCall(PetscOptionsReal("-steady_continuation_factor", "Factor between continuation steps (> 1)", "", o->factor, &o->factor, NULL));
+  PetscCall(PetscOptionsInt("-steady_inertia_steps", "Continuation in the Reynolds number: solve at the densities rho k/n, k = 1 ... n, at the first regularisation value (1: none)", "", o->nrho, &o->nrho, NULL));
+  PetscOptionsEnd();
+  PetscCheck(o->factor > 1.0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_factor must be > 1; got %g", (double)o->factor);
+  PetscCheck(!o->set || regname, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_start needs a regularised rheology; this one has no regularisation parameter");
+  PetscCheck(!o->set || o->start > 0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_start must be positive; got %g", (double)o->start);
+  PetscCheck(o->nrho >= 1, comm, PETSC_ERR_USER_INPUT, "-steady_inertia_steps must be a positive integer (1: no continuation); got %" PetscInt_FMT, o->nrho);
+  PetscCall(SlumpProblemGetEffects(prob, &effects));
+  PetscCheck(o->nrho == 1 || (effects & SLUMP_EFFECT_CONVECTION), comm, PETSC_ERR_USER_INPUT, "-steady_inertia_steps needs a steady flow with convection (the cavity with -re > 0, for instance); this one's steady state does not depend on the density");
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSteadyCheckOptions(SlumpProblem prob)
+{
+  SteadyOptions o;
+  DM            dm;
+  MPI_Comm      comm;
+  PetscFunctionBeginUser;
+  PetscCall(SlumpProblemGetDM(prob, &dm));
+  PetscCall(PetscObjectGetComm((PetscObject)dm, &comm));
+  PetscCall(SteadyReadOptions(prob, comm, &o));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
 {
   SlumpImplicitSolver s;
   SlumpRheology       rheo;
+  SteadyOptions       o;
   const char         *regname;
-  PetscReal           target, start = 0.0, factor = 10.0, v;
-  PetscBool           larger_stiffer, set, monitor = PETSC_FALSE;
+  PetscReal           target, start, factor, v, rho;
+  PetscInt            nrho, kr, effects;
+  PetscBool           larger_stiffer, set, monitor;
   MPI_Comm            comm;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &larger_stiffer));
-  PetscOptionsBegin(comm, NULL, "Steady solve", "SlumpSteadySolve");
-  PetscCall(PetscOptionsReal("-steady_continuation_start", "First value of the regularisation parameter (continuation towards the model's value)", "", start, &start, &set));
-  PetscCall(PetscOptionsBool("-newton_monitor", "Print max|F| at every Newton iterate", "", monitor, &monitor, NULL));
-  PetscCall(PetscOptionsReal("-steady_continuation_factor", "Factor between continuation steps (> 1)", "", factor, &factor, NULL));
-  PetscOptionsEnd();
-  PetscCheck(factor > 1.0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_factor must be > 1; got %g", (double)factor);
-  PetscCheck(!set || regname, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_start needs a regularised rheology; this one has no regularisation parameter");
-  PetscCheck(!set || start > 0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_start must be positive; got %g", (double)start);
+  PetscCall(SteadyReadOptions(prob, comm, &o));
+  start   = o.start;
+  factor  = o.factor;
+  nrho    = o.nrho;
+  set     = o.set;
+  monitor = o.monitor;
+  PetscCall(SlumpProblemGetEffects(prob, &effects));
+  PetscCall(SlumpProblemGetDensity(prob, &rho));
   {
     PetscBool sv;
     PetscCall(SlumpLinearisationSetUp(prob, comm, &sv));
   }
   PetscCall(SlumpImplicitSolverCreate(prob, X, &s));
-  v = set ? start : target;
+  v  = set ? start : target;
+  kr = 1;
   for (;;) {
     PetscBool conv, last;
     PetscInt  nits, lits;
@@ -287,6 +339,7 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
          instead of 19) */
       PetscCall(SlumpProblemDualReset(prob));
     } else last = PETSC_TRUE;
+    if (nrho > 1) PetscCall(SlumpProblemSetDensity(prob, rho * kr / nrho));
     PetscCall(SlumpImplicitSolverSolve(s, 0.0, 0.0, NULL, X, &conv, &nits, &lits));
     PetscCall(VecDuplicate(X, &F));
     PetscCall(SlumpProblemResidual(prob, 0.0, X, NULL, F));
@@ -299,6 +352,7 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
       for (PetscInt k = 0; k < nh; ++k) PetscCall(PetscPrintf(comm, "  newton %3" PetscInt_FMT " max|F| %.6e\n", k, (double)h[k]));
       PetscCall(PetscPrintf(comm, "  newton %3" PetscInt_FMT " max|F| %.6e (final)\n", nh, (double)fn));
     }
+    if (nrho > 1 && kr <= nrho) PetscCall(PetscPrintf(comm, "steady: density %-10.4g (%" PetscInt_FMT " of %" PetscInt_FMT ")\n", (double)(rho * kr / nrho), kr, nrho));
     if (regname) PetscCall(PetscPrintf(comm, "steady: %s = %-10.4g Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", regname, (double)v, nits, lits, (double)fn, conv ? "" : "  (not converged)"));
     else PetscCall(PetscPrintf(comm, "steady: Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", nits, lits, (double)fn, conv ? "" : "  (not converged)"));
     if (!conv) {
@@ -306,6 +360,7 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
       /* leave the model's own value in place: a caller that retries (a load
          continuation) would otherwise go on at this intermediate one */
       if (set) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, target));
+      if (nrho > 1) PetscCall(SlumpProblemSetDensity(prob, rho));
       PetscCall(SlumpImplicitSolverGetLinearFailures(s, &lf));
       PetscCall(SlumpImplicitSolverDestroy(&s));
       /* the Newton iteration stopped because a Krylov solve did: say so (the
@@ -320,7 +375,13 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
       }
     }
     PetscCheck(conv || !regname, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge at %s = %g; try -steady_continuation_start, -newton_max_it or a softer regularisation", regname, (double)v);
-    PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge; try -newton_max_it or a better initial state");
+    PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge; try -newton_max_it or a better initial state%s", effects & SLUMP_EFFECT_CONVECTION ? ", or a continuation in the Reynolds number (-steady_inertia_steps)" : "");
+    /* the density ramp, at the first regularisation value */
+    if (kr < nrho) {
+      ++kr;
+      continue;
+    }
+    kr = nrho + 1;
     if (last) break;
     v = larger_stiffer ? v * factor : v / factor;
   }

@@ -111,6 +111,8 @@ PETSC_EXTERN PetscErrorCode SlumpIntegratorGetLastStep(SlumpIntegrator ti, Petsc
    regularisation parameter: -steady_continuation_start v -steady_continuation_factor f
    go from v to the model's value in geometric steps. X: initial guess and result. */
 PETSC_EXTERN PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats);
+/* the -steady_* options read and checked, before anything is written */
+PETSC_EXTERN PetscErrorCode SlumpSteadyCheckOptions(SlumpProblem prob);
 
 /* Consistent initial conditions for the index-2 Navier-Stokes DAE: given a
    velocity in X, solve [rho M, B^T; B, 0] (u', p) = (-(A(u) - f), 0) and
