@@ -301,20 +301,15 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
   SlumpRheology       rheo;
   SteadyOptions       o;
   const char         *regname;
-  PetscReal           target, start, factor, v, rho;
-  PetscInt            nrho, kr, effects;
-  PetscBool           larger_stiffer, set, monitor;
+  PetscReal           target, v, rho;
+  PetscInt            kr, effects;
+  PetscBool           larger_stiffer;
   MPI_Comm            comm;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &larger_stiffer));
   PetscCall(SteadyReadOptions(prob, comm, &o));
-  start   = o.start;
-  factor  = o.factor;
-  nrho    = o.nrho;
-  set     = o.set;
-  monitor = o.monitor;
   PetscCall(SlumpProblemGetEffects(prob, &effects));
   PetscCall(SlumpProblemGetDensity(prob, &rho));
   {
@@ -322,14 +317,14 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
     PetscCall(SlumpLinearisationSetUp(prob, comm, &sv));
   }
   PetscCall(SlumpImplicitSolverCreate(prob, X, &s));
-  v  = set ? start : target;
+  v  = o.set ? o.start : target;
   kr = 1;
   for (;;) {
     PetscBool conv, last;
     PetscInt  nits, lits;
     Vec       F;
     PetscReal fn;
-    if (set) {
+    if (o.set) {
       last = larger_stiffer ? (v >= target * (1 - 1e-12)) : (v <= target * (1 + 1e-12));
       if (last) v = target;
       PetscCall(SlumpProblemSetRheologyParameter(prob, regname, v));
@@ -339,28 +334,28 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
          instead of 19) */
       PetscCall(SlumpProblemDualReset(prob));
     } else last = PETSC_TRUE;
-    if (nrho > 1) PetscCall(SlumpProblemSetDensity(prob, rho * kr / nrho));
+    if (o.nrho > 1) PetscCall(SlumpProblemSetDensity(prob, rho * kr / o.nrho));
     PetscCall(SlumpImplicitSolverSolve(s, 0.0, 0.0, NULL, X, &conv, &nits, &lits));
     PetscCall(VecDuplicate(X, &F));
     PetscCall(SlumpProblemResidual(prob, 0.0, X, NULL, F));
     PetscCall(VecNorm(F, NORM_INFINITY, &fn));
     PetscCall(VecDestroy(&F));
-    if (monitor) {
+    if (o.monitor) {
       PetscInt         nh;
       const PetscReal *h;
       PetscCall(SlumpImplicitSolverGetHistory(s, &nh, &h));
       for (PetscInt k = 0; k < nh; ++k) PetscCall(PetscPrintf(comm, "  newton %3" PetscInt_FMT " max|F| %.6e\n", k, (double)h[k]));
       PetscCall(PetscPrintf(comm, "  newton %3" PetscInt_FMT " max|F| %.6e (final)\n", nh, (double)fn));
     }
-    if (nrho > 1 && kr <= nrho) PetscCall(PetscPrintf(comm, "steady: density %-10.4g (%" PetscInt_FMT " of %" PetscInt_FMT ")\n", (double)(rho * kr / nrho), kr, nrho));
+    if (o.nrho > 1 && kr <= o.nrho) PetscCall(PetscPrintf(comm, "steady: density %-10.4g (%" PetscInt_FMT " of %" PetscInt_FMT ")\n", (double)(rho * kr / o.nrho), kr, o.nrho));
     if (regname) PetscCall(PetscPrintf(comm, "steady: %s = %-10.4g Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", regname, (double)v, nits, lits, (double)fn, conv ? "" : "  (not converged)"));
     else PetscCall(PetscPrintf(comm, "steady: Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", nits, lits, (double)fn, conv ? "" : "  (not converged)"));
     if (!conv) {
       SlumpLinearFailures lf;
       /* leave the model's own value in place: a caller that retries (a load
          continuation) would otherwise go on at this intermediate one */
-      if (set) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, target));
-      if (nrho > 1) PetscCall(SlumpProblemSetDensity(prob, rho));
+      if (o.set) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, target));
+      if (o.nrho > 1) PetscCall(SlumpProblemSetDensity(prob, rho));
       PetscCall(SlumpImplicitSolverGetLinearFailures(s, &lf));
       PetscCall(SlumpImplicitSolverDestroy(&s));
       /* the Newton iteration stopped because a Krylov solve did: say so (the
@@ -377,13 +372,13 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
     PetscCheck(conv || !regname, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge at %s = %g; try -steady_continuation_start, -newton_max_it or a softer regularisation", regname, (double)v);
     PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge; try -newton_max_it or a better initial state%s", effects & SLUMP_EFFECT_CONVECTION ? ", or a continuation in the Reynolds number (-steady_inertia_steps)" : "");
     /* the density ramp, at the first regularisation value */
-    if (kr < nrho) {
+    if (kr < o.nrho) {
       ++kr;
       continue;
     }
-    kr = nrho + 1;
+    kr = o.nrho + 1;
     if (last) break;
-    v = larger_stiffer ? v * factor : v / factor;
+    v = larger_stiffer ? v * o.factor : v / o.factor;
   }
   PetscCall(SlumpImplicitSolverGetStats(s, stats));
   PetscCall(SlumpProblemGetCounters(prob, &stats->res_evals, &stats->jac_evals));
