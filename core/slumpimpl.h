@@ -103,6 +103,8 @@ struct _n_SlumpProblem {
      the velocity block (SlumpProblemKSPSolve); linEscalated once it has */
   PetscInt      linEscalateIts;
   PetscBool     linEscalated;
+  KSP           linOuter, linVel; /* the last solve's KSP and its velocity block's (referenced) */
+  PetscInt      linJac;        /* the Jacobian count at that solve */
   PetscBool     linConfigured; /* a KSP has been configured (defaults set) */
   SlumpLinearFailures linFail;
   DM            dmP;
