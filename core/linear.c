@@ -16,6 +16,7 @@
  * the user has not set it, so -ksp_type, -pc_type, -fieldsplit_u_pc_type
  * hypre ... still override. */
 #include "slumpimpl.h"
+#include <petscblaslapack.h>
 
 #if defined(PETSC_HAVE_HYPRE)
   #define SLUMP_AMG PCHYPRE
@@ -44,6 +45,8 @@ PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
     PetscCall(PetscOptionsHasName(NULL, NULL, "-fieldsplit_flow_fieldsplit_u_ksp_type", &fu));
     if (!prob->linConfigured && (u || fu)) prob->linEscalateIts = 0;
   }
+  PetscCall(PetscOptionsReal("-stokes_velocity_deflation", "With -linear_solver iterative (velocity-pressure, plane, no level set): precondition the velocity block by two sweeps of a coarse correction on the rigid-body modes of each connected stiff region (diagonal above this fraction of the largest; 1e-4 recommended) and a BoomerAMG V-cycle; 0: off", "SlumpProblemKSPSolve", prob->linDeflation, &prob->linDeflation, NULL));
+  PetscCheck(prob->linDeflation >= 0 && prob->linDeflation < 1, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_velocity_deflation must be a fraction in [0, 1) of the largest diagonal entry (0: off; 1e-4 recommended); got %g", (double)prob->linDeflation);
   PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: fixed (-ksp_rtol, default 1e-10) or eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-4); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
   PetscOptionsEnd();
   prob->linForcing   = fo == 1 ? PETSC_TRUE : PETSC_FALSE;
@@ -345,6 +348,208 @@ static PetscErrorCode Escalate(SlumpProblem prob, KSP ksp, PetscBool *done)
   PetscFunctionReturn(0);
 }
 
+/* Deflation of the stiff regions' rigid motions (-stokes_velocity_deflation
+   delta). A regularised plug has a viscosity ~ tau_y m beside sheared fluid
+   of viscosity ~ eta: a nearly rigid inclusion, whose rigid motions are the
+   low-energy modes one V-cycle does not reduce. The velocity block's
+   preconditioner is two sweeps of (a Galerkin correction in the span Z of
+   the rigid-body modes restricted to each connected region whose diagonal
+   exceeds delta times the largest; one BoomerAMG V-cycle). The regions are
+   found anew at each Jacobian, per rank (a region cut by a partition
+   boundary gives one set of modes per rank). */
+typedef struct {
+  SlumpProblem  prob;
+  PetscInt      njac, k; /* the Jacobian count Z was built for; columns of Z */
+  Vec          *Z, *AZ, t, s;
+  PC            amg;
+  PetscScalar  *E, *w; /* Z^T A Z, LU-factored; a k-vector */
+  PetscBLASInt *piv;
+} Deflation;
+
+#define DEFLATION_MAX_REGIONS 16 /* per rank, the largest */
+#define DEFLATION_MIN_DOFS    6
+
+static PetscInt RootOf(PetscInt *parent, PetscInt i)
+{
+  while (parent[i] != i) {
+    parent[i] = parent[parent[i]];
+    i         = parent[i];
+  }
+  return i;
+}
+
+static PetscErrorCode DeflationFree(Deflation *c)
+{
+  PetscFunctionBeginUser;
+  if (c->Z) PetscCall(VecDestroyVecs(c->k, &c->Z));
+  if (c->AZ) PetscCall(VecDestroyVecs(c->k, &c->AZ));
+  PetscCall(PetscFree3(c->E, c->w, c->piv));
+  c->k = 0;
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode DeflationBuild(Deflation *c, Mat A)
+{
+  MPI_Comm           comm = PetscObjectComm((PetscObject)A);
+  Vec                d;
+  PetscReal          dmax;
+  PetscInt           rs, re, n, nnv, *parent, *size, *col, nreg = 0, kloc, off = 0;
+  const PetscScalar *da;
+  const Vec         *nv;
+  PetscBool          hasc;
+  PetscFunctionBeginUser;
+  PetscCall(DeflationFree(c));
+  PetscCall(MatCreateVecs(A, &d, NULL));
+  PetscCall(MatGetDiagonal(A, d));
+  PetscCall(VecMax(d, NULL, &dmax));
+  PetscCall(MatGetOwnershipRange(A, &rs, &re));
+  n = re - rs;
+  PetscCall(PetscMalloc3(n, &parent, n, &size, n, &col));
+  PetscCall(VecGetArrayRead(d, &da));
+  for (PetscInt i = 0; i < n; ++i) parent[i] = PetscRealPart(da[i]) > c->prob->linDeflation * dmax ? i : -1;
+  PetscCall(VecRestoreArrayRead(d, &da));
+  for (PetscInt i = 0; i < n; ++i) {
+    PetscInt        nc;
+    const PetscInt *cols;
+    if (parent[i] < 0) continue;
+    PetscCall(MatGetRow(A, rs + i, &nc, &cols, NULL));
+    for (PetscInt j = 0; j < nc; ++j) {
+      PetscInt q = cols[j] - rs, a, b;
+      if (q < 0 || q >= n || parent[q] < 0) continue;
+      a = RootOf(parent, i);
+      b = RootOf(parent, q);
+      if (a != b) parent[a] = b;
+    }
+    PetscCall(MatRestoreRow(A, rs + i, &nc, &cols, NULL));
+  }
+  /* the regions of at least DEFLATION_MIN_DOFS unknowns, the largest
+     DEFLATION_MAX_REGIONS of them, numbered 0.. in col[root] */
+  for (PetscInt i = 0; i < n; ++i) size[i] = 0, col[i] = -1;
+  for (PetscInt i = 0; i < n; ++i)
+    if (parent[i] >= 0) size[RootOf(parent, i)]++;
+  for (PetscInt r = 0; r < DEFLATION_MAX_REGIONS; ++r) {
+    PetscInt best = -1;
+    for (PetscInt i = 0; i < n; ++i)
+      if (parent[i] == i && col[i] < 0 && size[i] >= DEFLATION_MIN_DOFS && (best < 0 || size[i] > size[best])) best = i;
+    if (best < 0) break;
+    col[best] = nreg++;
+  }
+  PetscCall(MatNullSpaceGetVecs(c->prob->nearNull, &hasc, &nnv, &nv));
+  kloc = nreg * nnv;
+  PetscCallMPI(MPI_Exscan(&kloc, &off, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCallMPI(MPI_Allreduce(&kloc, &c->k, 1, MPIU_INT, MPI_SUM, comm));
+  PetscCall(PetscInfo(NULL, "deflation: %" PetscInt_FMT " stiff regions on this rank, %" PetscInt_FMT " vectors in all\n", nreg, c->k));
+  if (c->k) {
+    PetscBLASInt bk, info;
+    PetscCall(VecDuplicateVecs(d, c->k, &c->Z));
+    PetscCall(VecDuplicateVecs(d, c->k, &c->AZ));
+    for (PetscInt j = 0; j < c->k; ++j) PetscCall(VecSet(c->Z[j], 0.0));
+    for (PetscInt m = 0; m < nnv; ++m) {
+      const PetscScalar *ra;
+      PetscCall(VecGetArrayRead(nv[m], &ra));
+      for (PetscInt i = 0; i < n; ++i) {
+        PetscScalar *za;
+        PetscInt     r;
+        if (parent[i] < 0 || col[r = RootOf(parent, i)] < 0) continue;
+        PetscCall(VecGetArray(c->Z[off + col[r] * nnv + m], &za));
+        za[i] = ra[i];
+        PetscCall(VecRestoreArray(c->Z[off + col[r] * nnv + m], &za));
+      }
+      PetscCall(VecRestoreArrayRead(nv[m], &ra));
+    }
+    PetscCall(PetscMalloc3(c->k * c->k, &c->E, c->k, &c->w, c->k, &c->piv));
+    for (PetscInt j = 0; j < c->k; ++j) {
+      PetscCall(MatMult(A, c->Z[j], c->AZ[j]));
+      PetscCall(VecMDot(c->AZ[j], c->k, c->Z, &c->E[j * c->k]));
+    }
+    PetscCall(PetscBLASIntCast(c->k, &bk));
+    PetscCallBLAS("LAPACKgetrf", LAPACKgetrf_(&bk, &bk, c->E, &bk, c->piv, &info));
+    PetscCheck(!info, comm, PETSC_ERR_LIB, "-stokes_velocity_deflation: the coarse matrix Z^T A Z is singular (LAPACK getrf %d)", (int)info);
+  }
+  PetscCall(VecDestroy(&d));
+  PetscCall(PetscFree3(parent, size, col));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode DeflationApply(PC pc, Vec r, Vec y)
+{
+  Deflation   *c;
+  Mat          A;
+  PetscBLASInt bk, one = 1, info;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &c));
+  PetscCall(PCGetOperators(pc, &A, NULL));
+  if (c->njac != c->prob->njac || !c->t) {
+    PetscCall(DeflationBuild(c, A));
+    PetscCall(PCSetOperators(c->amg, A, A));
+    c->njac = c->prob->njac;
+    if (!c->t) {
+      PetscCall(VecDuplicate(r, &c->t));
+      PetscCall(VecDuplicate(r, &c->s));
+    }
+  }
+  PetscCall(PetscBLASIntCast(c->k, &bk));
+  PetscCall(VecSet(y, 0.0));
+  PetscCall(VecCopy(r, c->t)); /* t = r - A y */
+  for (PetscInt sweep = 0; sweep < 2; ++sweep) {
+    if (c->k) {
+      PetscCall(VecMDot(c->t, c->k, c->Z, c->w));
+      PetscCallBLAS("LAPACKgetrs", LAPACKgetrs_("N", &bk, &one, c->E, &bk, c->piv, c->w, &bk, &info));
+      PetscCall(VecMAXPY(y, c->k, c->w, c->Z));
+      for (PetscInt i = 0; i < c->k; ++i) c->w[i] = -c->w[i];
+      PetscCall(VecMAXPY(c->t, c->k, c->w, c->AZ));
+    }
+    PetscCall(PCApply(c->amg, c->t, c->s));
+    PetscCall(VecAXPY(y, 1.0, c->s));
+    if (sweep == 0) {
+      PetscCall(MatMult(A, y, c->t));
+      PetscCall(VecAYPX(c->t, -1.0, r));
+    }
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode DeflationDestroy(PC pc)
+{
+  Deflation *c;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &c));
+  PetscCall(DeflationFree(c));
+  PetscCall(VecDestroy(&c->t));
+  PetscCall(VecDestroy(&c->s));
+  PetscCall(PCDestroy(&c->amg));
+  PetscCall(PetscFree(c));
+  PetscFunctionReturn(0);
+}
+
+/* The velocity block's PC (BoomerAMG, its options under its prefix) made the
+   deflated preconditioner, unless it already is. */
+static PetscErrorCode DeflationAttach(SlumpProblem prob, KSP ku)
+{
+  PC          pc;
+  PetscBool   hyp;
+  const char *prefix;
+  Deflation  *c;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ku, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &hyp));
+  if (!hyp) PetscFunctionReturn(0);
+  PetscCall(PetscNew(&c));
+  c->prob = prob;
+  c->njac = -1;
+  PetscCall(PCGetOptionsPrefix(pc, &prefix));
+  PetscCall(PCCreate(PetscObjectComm((PetscObject)pc), &c->amg));
+  PetscCall(PCSetOptionsPrefix(c->amg, prefix));
+  PetscCall(PCSetType(c->amg, PCHYPRE));
+  PetscCall(PCSetFromOptions(c->amg));
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, c));
+  PetscCall(PCShellSetApply(pc, DeflationApply));
+  PetscCall(PCShellSetDestroy(pc, DeflationDestroy));
+  PetscCall(PCShellSetName(pc, "two sweeps of (rigid-mode deflation of the stiff regions, BoomerAMG V-cycle)"));
+  PetscFunctionReturn(0);
+}
+
 /* hypre's BoomerAMG set up again on a new matrix does not free what its
    Schwarz smoothers allocated (about 9 MB per Jacobian on poiseuille 16 x 64,
    hypre 2.26): on each new Jacobian the velocity block's hypre PC is made
@@ -374,6 +579,7 @@ static PetscErrorCode FreshVelocityPC(SlumpProblem prob, KSP ksp)
     PetscCall(KSPDestroy(&prob->linVel));
     prob->linVel = ku;
   }
+  if (prob->linVel && prob->linDeflation > 0 && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(DeflationAttach(prob, prob->linVel));
   prob->linJac = prob->njac;
   PetscFunctionReturn(0);
 }
