@@ -437,25 +437,31 @@ static PetscErrorCode DeflationBuild(Deflation *c, Mat A)
   PetscCall(MatNullSpaceGetVecs(c->prob->nearNull, &hasc, &nnv, &nv));
   kloc = nreg * nnv;
   PetscCallMPI(MPI_Exscan(&kloc, &off, 1, MPIU_INT, MPI_SUM, comm));
+  {
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (!rank) off = 0; /* MPI_Exscan leaves the first rank's result undefined */
+  }
   PetscCallMPI(MPI_Allreduce(&kloc, &c->k, 1, MPIU_INT, MPI_SUM, comm));
   PetscCall(PetscInfo(NULL, "deflation: %" PetscInt_FMT " stiff regions on this rank, %" PetscInt_FMT " vectors in all\n", nreg, c->k));
   if (c->k) {
     PetscBLASInt bk, info;
     PetscCall(VecDuplicateVecs(d, c->k, &c->Z));
     PetscCall(VecDuplicateVecs(d, c->k, &c->AZ));
-    for (PetscInt j = 0; j < c->k; ++j) PetscCall(VecSet(c->Z[j], 0.0));
-    for (PetscInt m = 0; m < nnv; ++m) {
-      const PetscScalar *ra;
-      PetscCall(VecGetArrayRead(nv[m], &ra));
-      for (PetscInt i = 0; i < n; ++i) {
-        PetscScalar *za;
-        PetscInt     r;
-        if (parent[i] < 0 || col[r = RootOf(parent, i)] < 0) continue;
-        PetscCall(VecGetArray(c->Z[off + col[r] * nnv + m], &za));
-        za[i] = ra[i];
-        PetscCall(VecRestoreArray(c->Z[off + col[r] * nnv + m], &za));
+    {
+      PetscScalar **za;
+      for (PetscInt j = 0; j < c->k; ++j) PetscCall(VecSet(c->Z[j], 0.0));
+      PetscCall(VecGetArrays(c->Z, c->k, &za));
+      for (PetscInt m = 0; m < nnv; ++m) {
+        const PetscScalar *ra;
+        PetscCall(VecGetArrayRead(nv[m], &ra));
+        for (PetscInt i = 0; i < n; ++i) {
+          PetscInt r;
+          if (parent[i] >= 0 && col[r = RootOf(parent, i)] >= 0) za[off + col[r] * nnv + m][i] = ra[i];
+        }
+        PetscCall(VecRestoreArrayRead(nv[m], &ra));
       }
-      PetscCall(VecRestoreArrayRead(nv[m], &ra));
+      PetscCall(VecRestoreArrays(c->Z, c->k, &za));
     }
     PetscCall(PetscMalloc3(c->k * c->k, &c->E, c->k, &c->w, c->k, &c->piv));
     for (PetscInt j = 0; j < c->k; ++j) {
