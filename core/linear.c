@@ -27,14 +27,14 @@
 PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
 {
   const char *kinds[] = {"direct", "iterative"};
-  const char *pres[]  = {"mass", "selfp", "bfbt"};
+  const char *pres[]  = {"mass", "selfp"};
   const char *forc[]  = {"fixed", "eisenstat_walker"};
   PetscInt    k       = prob->linIterative ? 1 : 0, sp = prob->schurPre, fo = prob->linForcing ? 1 : 0;
   PetscBool   spSet   = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(prob->comm, NULL, "Linear solver", "SlumpProblem");
   PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with BoomerAMG on the velocity block for velocity-pressure; with a level set, block Gauss-Seidel of the flow and the level set by ILU)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
-  PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|); the default without a level set), selfp (B diag(A)^-1 B^T by BoomerAMG; the default with a level set) or bfbt (weighted least-squares commutator -L^-1 B D^-1 A D^-1 B^T L^-1, L = B D^-1 B^T by BoomerAMG, D = diag(A); no level set)", "SlumpProblemConfigureKSP", pres, 3, pres[sp], &sp, &spSet));
+  PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|); the default without a level set) or selfp (B diag(A)^-1 B^T by BoomerAMG; the default with a level set)", "SlumpProblemConfigureKSP", pres, 2, pres[sp], &sp, &spSet));
   PetscCall(PetscOptionsInt("-linear_escalate_its", "With -linear_solver iterative (velocity-pressure, no level set): a Krylov solve that passes this many iterations is repeated, and every later one made, with an inner GMRES solve of the velocity block to 1e-2 (0: never; ignored when -fieldsplit_u_ksp_type is given)", "SlumpProblemKSPSolve", prob->linEscalateIts, &prob->linEscalateIts, NULL));
   PetscCheck(prob->linEscalateIts >= 0, prob->comm, PETSC_ERR_USER_INPUT, "-linear_escalate_its must be a non-negative number of iterations (0: never escalate); got %" PetscInt_FMT, prob->linEscalateIts);
   {
@@ -187,7 +187,6 @@ static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, PetscInt schurPre, KSP 
   PetscCall(PCFieldSplitSetType(pc, PC_COMPOSITE_SCHUR));
   PetscCall(PCFieldSplitSetSchurFactType(pc, PC_FIELDSPLIT_SCHUR_FACT_UPPER));
   if (schurPre == SLUMP_SCHUR_PRE_MASS) PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_USER, prob->Sp));
-  else if (schurPre == SLUMP_SCHUR_PRE_BFBT) PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELF, NULL));
   else PetscCall(PCFieldSplitSetSchurPre(pc, PC_FIELDSPLIT_SCHUR_PRE_SELFP, NULL));
   PetscCall(SetDefault(ksp, "fieldsplit_u_ksp_type", "preonly"));
 #if defined(PETSC_HAVE_HYPRE)
@@ -214,9 +213,7 @@ static PetscErrorCode ConfigureFlowPC(SlumpProblem prob, PetscInt schurPre, KSP 
   PetscCall(SetDefault(ksp, "fieldsplit_p_ksp_type", "preonly"));
   /* the weighted mass is spectrally a diagonal; B diag(A)^-1 B^T is a
      Laplacian (weighted by 1/(rho cj + eta h^-2)) */
-  /* bfbt: PCNONE until BFBtAttach makes it the shell (a PC of the Schur
-     complement operator itself has nothing assembled to set up on) */
-  PetscCall(SetDefault(ksp, "fieldsplit_p_pc_type", schurPre == SLUMP_SCHUR_PRE_MASS ? "jacobi" : schurPre == SLUMP_SCHUR_PRE_BFBT ? PCNONE : SLUMP_AMG));
+  PetscCall(SetDefault(ksp, "fieldsplit_p_pc_type", schurPre == SLUMP_SCHUR_PRE_MASS ? "jacobi" : SLUMP_AMG));
   PetscFunctionReturn(0);
 }
 
@@ -226,7 +223,7 @@ static PetscErrorCode ConfigureIterative(SlumpProblem prob, PetscInt schurPre, K
 {
   PC pc;
   PetscFunctionBeginUser;
-  PetscCheck(!prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || schurPre != SLUMP_SCHUR_PRE_MASS, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp or bfbt");
+  PetscCheck(!prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || schurPre == SLUMP_SCHUR_PRE_SELFP, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp");
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(SetDefault(ksp, "ksp_rtol", "1e-10"));
   /* no cap below PETSc's 10000: with 1000 one solve of the steady Bingham
@@ -559,122 +556,6 @@ static PetscErrorCode DeflationAttach(SlumpProblem prob, KSP ku)
   PetscFunctionReturn(0);
 }
 
-/* -stokes_schur_pre bfbt: the Schur complement S = -B A^-1 B^T of [A B^T;
-   B 0] preconditioned by the weighted least-squares commutator ("BFBt")
-     S^-1 ~ -L^-1 (B D^-1 A D^-1 B^T) L^-1,  L = B D^-1 B^T,  D = diag(A),
-   L by one BoomerAMG V-cycle (options -fieldsplit_p_bfbt_*). PETSc's PCLSC
-   approximates +(B A^-1 B^T)^-1 and does not scale L, hence our own. Its
-   weighting by the velocity block's own diagonal follows the BFBt variants
-   of Elman et al. (2006) and Rudi, Stadler & Ghattas (2017), which stay
-   robust where the viscosity varies sharply. Rebuilt at each Jacobian. */
-typedef struct {
-  SlumpProblem prob;
-  PetscInt     njac;
-  Mat          Btd, L; /* D^-1 B^T; L */
-  Vec          dinv, u1, u2, p1;
-  KSP          kL;
-} BFBt;
-
-static PetscErrorCode BFBtBuild(BFBt *c, Mat S)
-{
-  Mat A, Ap, Bt, B;
-  PetscFunctionBeginUser;
-  PetscCall(MatSchurComplementGetSubMatrices(S, &A, &Ap, &Bt, &B, NULL));
-  if (!c->dinv) {
-    PetscCall(MatCreateVecs(Ap, &c->dinv, &c->u1));
-    PetscCall(VecDuplicate(c->u1, &c->u2));
-    PetscCall(MatCreateVecs(B, NULL, &c->p1));
-  }
-  PetscCall(MatGetDiagonal(Ap, c->dinv));
-  if (getenv("BFBT_SQRT")) PetscCall(VecSqrtAbs(c->dinv));
-  PetscCall(VecReciprocal(c->dinv));
-  PetscCall(MatDestroy(&c->Btd));
-  PetscCall(MatDestroy(&c->L));
-  PetscCall(MatDuplicate(Bt, MAT_COPY_VALUES, &c->Btd));
-  PetscCall(MatDiagonalScale(c->Btd, c->dinv, NULL));
-  PetscCall(MatMatMult(B, c->Btd, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &c->L));
-  PetscCall(KSPSetOperators(c->kL, c->L, c->L));
-  c->njac = c->prob->njac;
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode BFBtApply(PC pc, Vec x, Vec y)
-{
-  BFBt *c;
-  Mat   S, A, B;
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &c));
-  PetscCall(PCGetOperators(pc, &S, NULL));
-  if (c->njac != c->prob->njac || !c->L) PetscCall(BFBtBuild(c, S));
-  PetscCall(MatSchurComplementGetSubMatrices(S, &A, NULL, NULL, &B, NULL));
-  PetscCall(KSPSolve(c->kL, x, y));
-  PetscCall(MatMult(c->Btd, y, c->u1));
-  PetscCall(MatMult(A, c->u1, c->u2));
-  PetscCall(VecPointwiseMult(c->u2, c->u2, c->dinv));
-  PetscCall(MatMult(B, c->u2, c->p1));
-  PetscCall(KSPSolve(c->kL, c->p1, y));
-  PetscCall(VecScale(y, -1.0));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode BFBtDestroy(PC pc)
-{
-  BFBt *c;
-  PetscFunctionBeginUser;
-  PetscCall(PCShellGetContext(pc, &c));
-  PetscCall(MatDestroy(&c->Btd));
-  PetscCall(MatDestroy(&c->L));
-  PetscCall(VecDestroy(&c->dinv));
-  PetscCall(VecDestroy(&c->u1));
-  PetscCall(VecDestroy(&c->u2));
-  PetscCall(VecDestroy(&c->p1));
-  PetscCall(KSPDestroy(&c->kL));
-  PetscCall(PetscFree(c));
-  PetscFunctionReturn(0);
-}
-
-/* ksp's Schur complement PC made the BFBt shell, unless the user chose
-   another PC for it (-fieldsplit_p_pc_type). */
-static PetscErrorCode BFBtAttach(SlumpProblem prob, KSP ksp)
-{
-  PC          pc, ps;
-  KSP        *sub;
-  PetscInt    ns;
-  PetscBool   isfs, none;
-  const char *prefix;
-  BFBt       *c;
-  PetscFunctionBeginUser;
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &isfs));
-  if (!isfs) PetscFunctionReturn(0);
-  PetscCall(KSPSetUp(ksp));
-  PetscCall(PCFieldSplitGetSubKSP(pc, &ns, &sub));
-  PetscCall(KSPGetPC(sub[ns - 1], &ps));
-  PetscCall(PetscFree(sub));
-  PetscCall(PetscObjectTypeCompare((PetscObject)ps, PCNONE, &none));
-  if (!none) PetscFunctionReturn(0);
-  PetscCall(PetscNew(&c));
-  c->prob = prob;
-  c->njac = -1;
-  PetscCall(PCGetOptionsPrefix(ps, &prefix));
-  PetscCall(KSPCreate(PetscObjectComm((PetscObject)ps), &c->kL));
-  PetscCall(KSPSetOptionsPrefix(c->kL, prefix));
-  PetscCall(KSPAppendOptionsPrefix(c->kL, "bfbt_"));
-  PetscCall(KSPSetType(c->kL, KSPPREONLY));
-  {
-    PC pl;
-    PetscCall(KSPGetPC(c->kL, &pl));
-    PetscCall(PCSetType(pl, SLUMP_AMG));
-  }
-  PetscCall(KSPSetFromOptions(c->kL));
-  PetscCall(PCSetType(ps, PCSHELL));
-  PetscCall(PCShellSetContext(ps, c));
-  PetscCall(PCShellSetApply(ps, BFBtApply));
-  PetscCall(PCShellSetDestroy(ps, BFBtDestroy));
-  PetscCall(PCShellSetName(ps, "BFBt: -L^-1 B D^-1 A D^-1 B^T L^-1, L = B D^-1 B^T, D = diag(A)"));
-  PetscFunctionReturn(0);
-}
-
 /* hypre's BoomerAMG set up again on a new matrix does not free what its
    Schwarz smoothers allocated (about 9 MB per Jacobian on poiseuille 16 x 64,
    hypre 2.26): on each new Jacobian the velocity block's hypre PC is made
@@ -703,7 +584,6 @@ static PetscErrorCode FreshVelocityPC(SlumpProblem prob, KSP ksp)
     if (ku) PetscCall(PetscObjectReference((PetscObject)ku));
     PetscCall(KSPDestroy(&prob->linVel));
     prob->linVel = ku;
-    if (prob->schurPre == SLUMP_SCHUR_PRE_BFBT && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(BFBtAttach(prob, ksp));
   }
   if (prob->linVel && prob->linDeflation > 0 && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(DeflationAttach(prob, prob->linVel));
   prob->linJac = prob->njac;

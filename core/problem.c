@@ -780,8 +780,7 @@ PetscErrorCode SlumpProblemSetUp(SlumpProblem prob)
      the Schur complement (a Laplacian weighted by 1/(rho cj)): the weighted
      mass needed 500 Krylov iterations per solve on dam_break, selfp 21 */
   if (!prob->schurPreSet && prob->extraField >= 0) prob->schurPre = SLUMP_SCHUR_PRE_SELFP;
-  PetscCheck(!prob->linIterative || !prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || prob->schurPre != SLUMP_SCHUR_PRE_MASS, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp or bfbt");
-  PetscCheck(!prob->linIterative || prob->extraField < 0 || prob->schurPre != SLUMP_SCHUR_PRE_BFBT, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre bfbt is for scenes without a level set; with one use selfp (the default) or mass");
+  PetscCheck(!prob->linIterative || !prob->petscAssembly || prob->formulation != SLUMP_FORMULATION_PLANE || prob->schurPre == SLUMP_SCHUR_PRE_SELFP, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_schur_pre mass is assembled by our cell loop; with -assembly petsc use -stokes_schur_pre selfp");
   PetscCall(SlumpRheologyCheck(prob->rheo));
   if (prob->axis >= 0) {
     PetscInt dim;

@@ -118,7 +118,7 @@ struct _n_SlumpProblem {
   MatNullSpace  nearNull;
 };
 
-enum { SLUMP_SCHUR_PRE_MASS, SLUMP_SCHUR_PRE_SELFP, SLUMP_SCHUR_PRE_BFBT };
+enum { SLUMP_SCHUR_PRE_MASS, SLUMP_SCHUR_PRE_SELFP };
 PETSC_INTERN PetscErrorCode SlumpProblemLinearDestroy(SlumpProblem);
 PETSC_INTERN PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem);
 /* the viscosity-weighted pressure mass matrix (assembly.c) */
