@@ -47,6 +47,7 @@ PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
   }
   PetscCall(PetscOptionsReal("-stokes_velocity_deflation", "With -linear_solver iterative (velocity-pressure, plane, no level set): precondition the velocity block by two sweeps of a coarse correction on the rigid-body modes of each connected stiff region (diagonal above this fraction of the largest; 1e-4 recommended) and a BoomerAMG V-cycle; 0: off", "SlumpProblemKSPSolve", prob->linDeflation, &prob->linDeflation, NULL));
   PetscCheck(prob->linDeflation >= 0 && prob->linDeflation < 1, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_velocity_deflation must be a fraction in [0, 1) of the largest diagonal entry (0: off; 1e-4 recommended); got %g", (double)prob->linDeflation);
+  PetscCall(PetscOptionsBool("-stokes_schur_pin_correction", "With -linear_solver iterative on enclosed flows (pressure fixed at one vertex; velocity-pressure, no level set): correct the Schur complement's preconditioner on the constant pressure, the pinned system's smallest mode", "SlumpProblemKSPSolve", prob->linPinCorrection, &prob->linPinCorrection, NULL));
   PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: fixed (-ksp_rtol, default 1e-10) or eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-4); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
   PetscOptionsEnd();
   prob->linForcing   = fo == 1 ? PETSC_TRUE : PETSC_FALSE;
@@ -556,6 +557,103 @@ static PetscErrorCode DeflationAttach(SlumpProblem prob, KSP ku)
   PetscFunctionReturn(0);
 }
 
+/* Enclosed flows fix the pressure at one vertex. The Schur complement S of
+   the pinned system then has one eigenvalue far below the others, on a
+   nearly constant pressure v (S 1 is only the pinned vertex's column,
+   of size h^2 against the spectrum's O(1)), which the weighted mass does
+   not see: GMRES stalls on it for a dozen iterations per solve (the
+   Newtonian cavity with an exact velocity solve: 38 iterations, 12 of
+   them on a plateau). The Schur complement's PC P is corrected on v,
+     y = P^-1 x + v (v^T x) / (v^T S v),
+   v^T S v computed once per Jacobian through the Schur complement's own
+   velocity solve. Not with a level set (no scene with one is enclosed). */
+typedef struct {
+  PC          inner;
+  Vec         v, w;
+  PetscScalar sigma; /* v^T S v */
+} PinCorrection;
+
+/* at each new operator (PCSetUp calls it when the Schur complement's
+   preconditioning matrix has changed) */
+static PetscErrorCode PinCorrectionSetUp(PC pc)
+{
+  PinCorrection *c;
+  Mat            S, Sp;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &c));
+  PetscCall(PCGetOperators(pc, &S, &Sp));
+  PetscCall(PCSetOperators(c->inner, S, Sp));
+  PetscCall(PCSetUp(c->inner));
+  if (!c->v) PetscCall(MatCreateVecs(Sp, &c->v, &c->w));
+  PetscCall(VecSet(c->v, 1.0));
+  PetscCall(MatMult(S, c->v, c->w));
+  PetscCall(VecDot(c->v, c->w, &c->sigma));
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PinCorrectionApply(PC pc, Vec x, Vec y)
+{
+  PinCorrection *c;
+  PetscScalar    a;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &c));
+  PetscCall(PCApply(c->inner, x, y));
+  if (c->sigma != 0.0) {
+    PetscCall(VecDot(c->v, x, &a));
+    PetscCall(VecAXPY(y, a / c->sigma, c->v));
+  }
+  PetscFunctionReturn(0);
+}
+
+static PetscErrorCode PinCorrectionDestroy(PC pc)
+{
+  PinCorrection *c;
+  PetscFunctionBeginUser;
+  PetscCall(PCShellGetContext(pc, &c));
+  PetscCall(PCDestroy(&c->inner));
+  PetscCall(VecDestroy(&c->v));
+  PetscCall(VecDestroy(&c->w));
+  PetscCall(PetscFree(c));
+  PetscFunctionReturn(0);
+}
+
+/* ksp's Schur complement PC wrapped in the correction on the constant
+   pressure (ksp already set up by VelocityKSP). */
+static PetscErrorCode PinCorrectionAttach(KSP ksp)
+{
+  PC             pc, ps;
+  KSP           *sub;
+  PetscInt       ns;
+  PetscBool      isfs, shell;
+  const char    *prefix;
+  PCType         type;
+  PinCorrection *c;
+  PetscFunctionBeginUser;
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &isfs));
+  if (!isfs) PetscFunctionReturn(0);
+  PetscCall(KSPSetUp(ksp));
+  PetscCall(PCFieldSplitGetSubKSP(pc, &ns, &sub));
+  PetscCall(KSPGetPC(sub[ns - 1], &ps));
+  PetscCall(PetscFree(sub));
+  PetscCall(PetscObjectTypeCompare((PetscObject)ps, PCSHELL, &shell));
+  if (shell) PetscFunctionReturn(0);
+  PetscCall(PetscNew(&c));
+  PetscCall(PCGetType(ps, &type));
+  PetscCall(PCGetOptionsPrefix(ps, &prefix));
+  PetscCall(PCCreate(PetscObjectComm((PetscObject)ps), &c->inner));
+  PetscCall(PCSetOptionsPrefix(c->inner, prefix));
+  PetscCall(PCSetType(c->inner, type));
+  PetscCall(PCSetFromOptions(c->inner));
+  PetscCall(PCSetType(ps, PCSHELL));
+  PetscCall(PCShellSetContext(ps, c));
+  PetscCall(PCShellSetSetUp(ps, PinCorrectionSetUp));
+  PetscCall(PCShellSetApply(ps, PinCorrectionApply));
+  PetscCall(PCShellSetDestroy(ps, PinCorrectionDestroy));
+  PetscCall(PCShellSetName(ps, "the Schur preconditioner corrected on the constant pressure (pinned pressure)"));
+  PetscFunctionReturn(0);
+}
+
 /* hypre's BoomerAMG set up again on a new matrix does not free what its
    Schwarz smoothers allocated (about 9 MB per Jacobian on poiseuille 16 x 64,
    hypre 2.26): on each new Jacobian the velocity block's hypre PC is made
@@ -584,6 +682,7 @@ static PetscErrorCode FreshVelocityPC(SlumpProblem prob, KSP ksp)
     if (ku) PetscCall(PetscObjectReference((PetscObject)ku));
     PetscCall(KSPDestroy(&prob->linVel));
     prob->linVel = ku;
+    if (prob->linPinCorrection && prob->pressurePinned && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(PinCorrectionAttach(ksp));
   }
   if (prob->linVel && prob->linDeflation > 0 && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(DeflationAttach(prob, prob->linVel));
   prob->linJac = prob->njac;

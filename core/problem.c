@@ -23,6 +23,7 @@ PetscErrorCode SlumpProblemCreate(MPI_Comm comm, SlumpProblem *prob)
   p->yieldedOverride = -1.0;
   p->linForcing     = PETSC_FALSE;
   p->linEscalateIts = 1000;
+  p->linPinCorrection = PETSC_TRUE;
   PetscCall(SlumpRheologyCreate(comm, &p->rheo));
   *prob = p;
   PetscFunctionReturn(0);

@@ -106,6 +106,7 @@ struct _n_SlumpProblem {
   KSP           linOuter, linVel; /* the last solve's KSP and its velocity block's (referenced) */
   PetscInt      linJac;        /* the Jacobian count at that solve */
   PetscReal     linDeflation;  /* -stokes_velocity_deflation: stiffness fraction of the deflated regions, 0: off */
+  PetscBool     linPinCorrection; /* -stokes_schur_pin_correction: the Schur PC corrected on the constant pressure when it is pinned */
   PetscBool     linConfigured; /* a KSP has been configured (defaults set) */
   SlumpLinearFailures linFail;
   DM            dmP;
