@@ -12,6 +12,7 @@
  * -options_ignore_unused allows options nothing reads. */
 #include "slumpscene.h"
 #include <ctype.h>
+#include <strings.h>
 
 /* PETSc's own options, read at initialisation or at finalisation. */
 static const char *const PetscGlobal[] = {"help", "version", "options_", "log_", "malloc", "memory_", "objects_", "info", "on_error_", "no_signal_handler", "fp_trap", "check_pointer", "viewer_", "skip_petscrc", "nox", "display", "saws", "mpi_", "stop_for_debugger", "start_in_debugger", "debugger", "error_output", "use_gpu_aware_mpi", "device_", "checkstack", "sleep", "get_total_flops", "history", "python", "citations", "slepc_", "petsc_", "tmp", "shared_tmp", "not_shared_tmp", "use_", "compare", "vecscatter_", NULL};
@@ -120,6 +121,22 @@ static PetscErrorCode CheckValues(MPI_Comm comm)
       continue;
     }
     pending = PETSC_FALSE;
+    {
+      /* a logical option's value: what PetscOptionsStringToBool takes (its
+         own error does not name the option) */
+      const SlumpOptionInfo *o = Lookup(name + 1);
+      if (o && !strcmp(o->kind, "bool")) {
+        static const char *const words[] = {"true", "false", "yes", "no", "on", "off", "1", "0"};
+        PetscBool                ok      = PETSC_FALSE;
+        for (size_t k = 0; k < sizeof(words) / sizeof(words[0]) && !ok; ++k) ok = strcasecmp(tok, words[k]) ? PETSC_FALSE : PETSC_TRUE;
+        if (!ok) {
+          char msg[1200];
+          PetscCall(PetscSNPrintf(msg, sizeof(msg), "Option %s must be true or false (also yes/no, on/off, 1/0); got %s", name, tok));
+          PetscCall(PetscFree(all));
+          SETERRQ(comm, PETSC_ERR_USER_INPUT, "%s", msg);
+        }
+      }
+    }
     {
       /* a value: each of its comma-, colon- or space-separated numbers */
       char  buf[1024], *piece, *s2 = NULL;

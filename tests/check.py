@@ -1378,6 +1378,8 @@ INPUT_CASES = [
     ("cavity_grid", ["-scene", "cavity", "-cavity_grid", "5"], "-cavity_grid"),
     ("linear_escalate_its", ["-scene", "poiseuille", "-linear_solver", "iterative", "-linear_escalate_its", "-3"], "-linear_escalate_its"),
     ("velocity_deflation", ["-scene", "poiseuille", "-linear_solver", "iterative", "-stokes_velocity_deflation", "2"], "-stokes_velocity_deflation"),
+    ("logical_value", ["-scene", "cavity", "-linear_solver", "iterative", "-stokes_schur_pin_correction", "maybe"], "-stokes_schur_pin_correction"),
+    ("logical_value_output", ["-scene", "decay", "-output_overwrite", "sometimes"], "-output_overwrite"),
 ]
 
 
