@@ -297,16 +297,18 @@ PetscErrorCode SlumpProblemConfigureInitKSP(SlumpProblem prob, KSP ksp)
   PetscFunctionReturn(0);
 }
 
-/* The velocity block's KSP of ksp's Schur fieldsplit (inside the flow block
-   with a level set), NULL if there is none. */
-static PetscErrorCode VelocityKSP(SlumpProblem prob, KSP ksp, KSP *ku)
+/* The velocity block's KSP ku and the Schur complement's kp of ksp's Schur
+   fieldsplit (inside the flow block with a level set), NULL if there is
+   none; kp may be NULL. ksp is set up. */
+static PetscErrorCode SplitKSPs(SlumpProblem prob, KSP ksp, KSP *ku, KSP *kp)
 {
-  PC          pc;
-  PetscBool   isfs;
-  KSP        *sub;
-  PetscInt    ns;
+  PC        pc;
+  PetscBool isfs;
+  KSP      *sub;
+  PetscInt  ns;
   PetscFunctionBeginUser;
   *ku = NULL;
+  if (kp) *kp = NULL;
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &isfs));
   if (!isfs) PetscFunctionReturn(0);
@@ -322,6 +324,7 @@ static PetscErrorCode VelocityKSP(SlumpProblem prob, KSP ksp, KSP *ku)
     PetscCall(PCFieldSplitGetSubKSP(pc, &ns, &sub));
   }
   *ku = sub[0];
+  if (kp) *kp = sub[ns - 1];
   PetscCall(PetscFree(sub));
   PetscFunctionReturn(0);
 }
@@ -336,7 +339,7 @@ static PetscErrorCode Escalate(SlumpProblem prob, KSP ksp, PetscBool *done)
   PetscBool pre;
   PetscFunctionBeginUser;
   *done = PETSC_FALSE;
-  PetscCall(VelocityKSP(prob, ksp, &ku));
+  PetscCall(SplitKSPs(prob, ksp, &ku, NULL));
   if (!ku) PetscFunctionReturn(0);
   PetscCall(KSPGetType(ku, &type));
   PetscCall(PetscStrcmp(type, KSPPREONLY, &pre));
@@ -529,13 +532,32 @@ static PetscErrorCode DeflationDestroy(PC pc)
   PetscFunctionReturn(0);
 }
 
+/* pc made a shell (ctx, apply, setup if not NULL, destroy, name) around a
+   new PC *inner of the given type, which takes pc's options prefix. */
+static PetscErrorCode WrapInShell(PC pc, PCType type, void *ctx, PetscErrorCode (*apply)(PC, Vec, Vec), PetscErrorCode (*setup)(PC), PetscErrorCode (*destroy)(PC), const char name[], PC *inner)
+{
+  const char *prefix;
+  PetscFunctionBeginUser;
+  PetscCall(PCGetOptionsPrefix(pc, &prefix));
+  PetscCall(PCCreate(PetscObjectComm((PetscObject)pc), inner));
+  PetscCall(PCSetOptionsPrefix(*inner, prefix));
+  PetscCall(PCSetType(*inner, type));
+  PetscCall(PCSetFromOptions(*inner));
+  PetscCall(PCSetType(pc, PCSHELL));
+  PetscCall(PCShellSetContext(pc, ctx));
+  if (setup) PetscCall(PCShellSetSetUp(pc, setup));
+  PetscCall(PCShellSetApply(pc, apply));
+  PetscCall(PCShellSetDestroy(pc, destroy));
+  PetscCall(PCShellSetName(pc, name));
+  PetscFunctionReturn(0);
+}
+
 /* The velocity block's PC (BoomerAMG, its options under its prefix) made the
    deflated preconditioner, unless it already is. */
 static PetscErrorCode DeflationAttach(SlumpProblem prob, KSP ku)
 {
   PC          pc;
   PetscBool   hyp;
-  const char *prefix;
   Deflation  *c;
   PetscFunctionBeginUser;
   PetscCall(KSPGetPC(ku, &pc));
@@ -544,16 +566,7 @@ static PetscErrorCode DeflationAttach(SlumpProblem prob, KSP ku)
   PetscCall(PetscNew(&c));
   c->prob = prob;
   c->njac = -1;
-  PetscCall(PCGetOptionsPrefix(pc, &prefix));
-  PetscCall(PCCreate(PetscObjectComm((PetscObject)pc), &c->amg));
-  PetscCall(PCSetOptionsPrefix(c->amg, prefix));
-  PetscCall(PCSetType(c->amg, PCHYPRE));
-  PetscCall(PCSetFromOptions(c->amg));
-  PetscCall(PCSetType(pc, PCSHELL));
-  PetscCall(PCShellSetContext(pc, c));
-  PetscCall(PCShellSetApply(pc, DeflationApply));
-  PetscCall(PCShellSetDestroy(pc, DeflationDestroy));
-  PetscCall(PCShellSetName(pc, "two sweeps of (rigid-mode deflation of the stiff regions, BoomerAMG V-cycle)"));
+  PetscCall(WrapInShell(pc, PCHYPRE, c, DeflationApply, NULL, DeflationDestroy, "two sweeps of (rigid-mode deflation of the stiff regions, BoomerAMG V-cycle)", &c->amg));
   PetscFunctionReturn(0);
 }
 
@@ -617,40 +630,23 @@ static PetscErrorCode PinCorrectionDestroy(PC pc)
   PetscFunctionReturn(0);
 }
 
-/* ksp's Schur complement PC wrapped in the correction on the constant
-   pressure (ksp already set up by VelocityKSP). */
-static PetscErrorCode PinCorrectionAttach(KSP ksp)
+/* The Schur complement's PC (of its KSP kp) wrapped in the correction on
+   the constant pressure, unless it already is. */
+static PetscErrorCode PinCorrectionAttach(KSP kp)
 {
-  PC             pc, ps;
-  KSP           *sub;
-  PetscInt       ns;
-  PetscBool      isfs, shell;
-  const char    *prefix;
+  PC             ps;
+  PetscBool      shell;
   PCType         type;
+  char           tname[64];
   PinCorrection *c;
   PetscFunctionBeginUser;
-  PetscCall(KSPGetPC(ksp, &pc));
-  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCFIELDSPLIT, &isfs));
-  if (!isfs) PetscFunctionReturn(0);
-  PetscCall(KSPSetUp(ksp));
-  PetscCall(PCFieldSplitGetSubKSP(pc, &ns, &sub));
-  PetscCall(KSPGetPC(sub[ns - 1], &ps));
-  PetscCall(PetscFree(sub));
+  PetscCall(KSPGetPC(kp, &ps));
   PetscCall(PetscObjectTypeCompare((PetscObject)ps, PCSHELL, &shell));
   if (shell) PetscFunctionReturn(0);
   PetscCall(PetscNew(&c));
   PetscCall(PCGetType(ps, &type));
-  PetscCall(PCGetOptionsPrefix(ps, &prefix));
-  PetscCall(PCCreate(PetscObjectComm((PetscObject)ps), &c->inner));
-  PetscCall(PCSetOptionsPrefix(c->inner, prefix));
-  PetscCall(PCSetType(c->inner, type));
-  PetscCall(PCSetFromOptions(c->inner));
-  PetscCall(PCSetType(ps, PCSHELL));
-  PetscCall(PCShellSetContext(ps, c));
-  PetscCall(PCShellSetSetUp(ps, PinCorrectionSetUp));
-  PetscCall(PCShellSetApply(ps, PinCorrectionApply));
-  PetscCall(PCShellSetDestroy(ps, PinCorrectionDestroy));
-  PetscCall(PCShellSetName(ps, "the Schur preconditioner corrected on the constant pressure (pinned pressure)"));
+  PetscCall(PetscStrncpy(tname, type, sizeof(tname))); /* type is freed when ps becomes the shell */
+  PetscCall(WrapInShell(ps, tname, c, PinCorrectionApply, PinCorrectionSetUp, PinCorrectionDestroy, "the Schur preconditioner corrected on the constant pressure (pinned pressure)", &c->inner));
   PetscFunctionReturn(0);
 }
 
@@ -674,15 +670,15 @@ static PetscErrorCode FreshVelocityPC(SlumpProblem prob, KSP ksp)
     }
   }
   if (ksp != prob->linOuter) {
-    KSP ku;
-    PetscCall(VelocityKSP(prob, ksp, &ku));
+    KSP ku, kp;
+    PetscCall(SplitKSPs(prob, ksp, &ku, &kp));
     PetscCall(PetscObjectReference((PetscObject)ksp));
     PetscCall(KSPDestroy(&prob->linOuter));
     prob->linOuter = ksp;
     if (ku) PetscCall(PetscObjectReference((PetscObject)ku));
     PetscCall(KSPDestroy(&prob->linVel));
     prob->linVel = ku;
-    if (prob->linPinCorrection && prob->pressurePinned && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(PinCorrectionAttach(ksp));
+    if (prob->linPinCorrection && prob->pressurePinned && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0 && kp) PetscCall(PinCorrectionAttach(kp));
   }
   if (prob->linVel && prob->linDeflation > 0 && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(DeflationAttach(prob, prob->linVel));
   prob->linJac = prob->njac;
