@@ -6,6 +6,7 @@ and the linear solves (PCSetUp = LU factorisation, KSPSolve), from -log_view.
 
 usage: python3 cases/bench.py [--slump build/slump] [--out docs/performance.md] [--quick]
        python3 cases/bench.py --linear [--max-unknowns 1.1e6] [--out table.md]
+       python3 cases/bench.py --scaling 1,2[,4,...] [--solver iterative|direct] [--out table.md]
 
 --linear: LU (MUMPS) against -linear_solver iterative on poiseuille (steady
 Bingham, Stokes), cavity (steady Bingham lid-driven, Stokes) and
@@ -17,6 +18,16 @@ least 1e4 unknowns); then Krylov iterations per solve against Papanastasiou
 m (1e2 ... 1e6) on poiseuille 32 x 128 with a fixed Krylov tolerance, with
 the default velocity V-cycle and with -stokes_velocity_deflation 1e-4.
 LU runs stop at --max-lu-unknowns.
+
+--scaling: strong and weak scaling of one scene of each type (poiseuille
+32 x 128 at m = 1e4, cavity 64 x 64, duct_cessation 128 x 128) on the given
+rank counts, with the METIS partition. Strong: the same mesh, speed-up
+T(1)/T(r) and efficiency T(1)/(r T(r)); the results' largest relative
+difference from the 1-rank run (kinetic energy, shear rates, flow rate,
+arrest time, stream function, unyielded area). Weak: the mesh refined by
+sqrt(r) in each direction (about r times the unknowns), efficiency the
+1-rank time per Newton iteration over the r-rank one. Ranks beyond the
+machine's cores run oversubscribed: correct, but not a measure of speed.
 """
 import math
 import argparse
@@ -43,7 +54,9 @@ def run(slump, scene, opts, ranks=1, mpiexec="mpiexec"):
     with tempfile.TemporaryDirectory() as d:
         cmd = [slump, "-scene", scene, "-output_dir", d, "-quiet", "-output_fields", "0", "-log_view"] + opts
         if ranks > 1:
-            cmd = [mpiexec, "--oversubscribe", "--allow-run-as-root", "-n", str(ranks)] + cmd
+            # more ranks than cores: idle ranks must yield, or polling swamps the run
+            yield_idle = ["--mca", "mpi_yield_when_idle", "1"] if ranks > (os.cpu_count() or 1) else []
+            cmd = [mpiexec, "--oversubscribe", "--allow-run-as-root", "-n", str(ranks)] + yield_idle + cmd
         p = subprocess.run(cmd, capture_output=True, text=True, check=True)
         with open(os.path.join(d, "summary.csv")) as f:
             s = next(csv.DictReader(f))
@@ -129,6 +142,69 @@ def linear_bench(a):
             f.write("\n".join(lines) + "\n")
 
 
+SCALING_CASES = (
+    ("poiseuille", 32, 128, ["-rheology_papanastasiou_m", "1e4", "-steady_continuation_start", "1e2"]),
+    ("cavity", 64, 64, []),
+    ("duct_cessation", 128, 128, ["-time_final", "0.005"]),
+)
+SCALING_RESULTS = ("t_arrest", "kinetic_energy", "mean_shear_rate", "max_shear_rate", "flow_rate", "psi_max", "unyielded_area")
+
+
+def result_difference(s, ref):
+    """Largest relative difference of the result columns both runs have."""
+    d, compared = 0.0, []
+    for k in SCALING_RESULTS:
+        try:
+            a, b = float(s[k]), float(ref[k])
+        except (KeyError, TypeError, ValueError):
+            continue
+        if b != 0.0 and math.isfinite(a) and math.isfinite(b):
+            d = max(d, abs(a - b) / abs(b))
+            compared.append(k)
+    return "%.1e (%s)" % (d, ", ".join(compared)) if compared else "none compared"
+
+
+def scaling_bench(a):
+    ranks = [int(r) for r in a.scaling.split(",")]
+    if 1 not in ranks:
+        ranks = [1] + ranks
+    head = "| scene | mesh | unknowns | ranks | kind | Newton | Krylov | wall s | s per Newton | speed-up | efficiency | result difference from 1 rank | peak MB |"
+    lines = [head, "|" + "---|" * 13]
+    print("\n".join(lines), flush=True)
+    for scene, nx, ny, extra in SCALING_CASES:
+        ref = None
+        for r in ranks:
+            kinds = [("strong", nx, ny)] if r == 1 else [("strong", nx, ny), ("weak", round(nx * math.sqrt(r)), round(ny * math.sqrt(r)))]
+            for kind, mx, my in kinds:
+                opts = ["-mesh_nx", str(mx), "-mesh_ny", str(my), "-linear_solver", a.solver] + extra
+                try:
+                    s, _, _ = run(a.slump, scene, opts, r, a.mpiexec)
+                except subprocess.CalledProcessError as e:
+                    lines.append("| %s | %d x %d | | %d | %s | failed: %s | | | | | | | |" % (scene, mx, my, r, kind, ((e.stderr or "").strip().splitlines() or [""])[-1]))
+                    print(lines[-1], flush=True)
+                    continue
+                newton = max(int(s["newton_its"]), 1)
+                wall = float(s["wall_time"])
+                if r == 1:
+                    ref = s
+                if ref is None:
+                    speed = eff = diff = ""
+                elif r == 1:
+                    speed, eff, diff = "1.00", "1.00", ""
+                elif kind == "strong":
+                    speed = "%.2f" % (float(ref["wall_time"]) / wall)
+                    eff = "%.2f" % (float(ref["wall_time"]) / (r * wall))
+                    diff = result_difference(s, ref)
+                else:
+                    speed, diff = "", ""
+                    eff = "%.2f" % ((float(ref["wall_time"]) / max(int(ref["newton_its"]), 1)) / (wall / newton))
+                lines.append("| %s | %d x %d | %s | %d | %s | %d | %s | %.2f | %.4f | %s | %s | %s | %.0f |" % (scene, mx, my, s["unknowns"], r, kind if r > 1 else "", newton, s["lin_its"], wall, wall / newton, speed, eff, diff, float(s["peak_memory_mb"])))
+                print(lines[-1], flush=True)
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--slump", default="build/slump")
@@ -139,7 +215,12 @@ def main():
     ap.add_argument("--max-lu-unknowns", type=float, default=3e5)
     ap.add_argument("--ranks", type=int, default=1)
     ap.add_argument("--mpiexec", default="mpiexec")
+    ap.add_argument("--scaling", default=None, metavar="RANKS", help="strong and weak scaling on these rank counts, e.g. 1,2")
+    ap.add_argument("--solver", default="iterative", choices=("iterative", "direct"), help="-linear_solver of the --scaling runs")
     a = ap.parse_args()
+    if a.scaling:
+        scaling_bench(a)
+        return
     if a.linear:
         linear_bench(a)
         return
