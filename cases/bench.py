@@ -26,7 +26,8 @@ T(1)/T(r) and efficiency T(1)/(r T(r)); the results' largest relative
 difference from the 1-rank run (kinetic energy, shear rates, flow rate,
 arrest time, stream function, unyielded area). Weak: the mesh refined by
 sqrt(r) in each direction (about r times the unknowns), efficiency the
-1-rank time per Newton iteration over the r-rank one. Ranks beyond the
+1-rank time per Newton iteration over the r-rank one, and the same per
+Krylov iteration (which leaves out the growth of the Krylov count). Ranks beyond the
 machine's cores run oversubscribed: correct, but not a measure of speed.
 """
 import math
@@ -197,7 +198,11 @@ def scaling_bench(a):
                     diff = result_difference(s, ref)
                 else:
                     speed, diff = "", ""
+                    # per Newton iteration, and per Krylov iteration (without the
+                    # growth of the iteration counts with the mesh)
                     eff = "%.2f" % ((float(ref["wall_time"]) / max(int(ref["newton_its"]), 1)) / (wall / newton))
+                    if int(s["lin_its"]) > 0 and int(ref["lin_its"]) > 0:
+                        eff += " (%.2f per Krylov)" % ((float(ref["wall_time"]) / int(ref["lin_its"])) / (wall / int(s["lin_its"])))
                 lines.append("| %s | %d x %d | %s | %d | %s | %d | %s | %.2f | %.4f | %s | %s | %s | %.0f |" % (scene, mx, my, s["unknowns"], r, kind if r > 1 else "", newton, s["lin_its"], wall, wall / newton, speed, eff, diff, float(s["peak_memory_mb"])))
                 print(lines[-1], flush=True)
     if a.out:
