@@ -30,12 +30,12 @@ PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
   const char *pres[]  = {"mass", "selfp"};
   const char *forc[]  = {"fixed", "eisenstat_walker"};
   PetscInt    k       = prob->linIterative ? 1 : 0, sp = prob->schurPre, fo = prob->linForcing ? 1 : 0;
-  PetscBool   spSet   = PETSC_FALSE;
+  PetscBool   spSet   = PETSC_FALSE, set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(prob->comm, NULL, "Linear solver", "SlumpProblem");
   PetscCall(PetscOptionsEList("-linear_solver", "Linear solves: direct (MUMPS LU) or iterative (GMRES + BoomerAMG for a scalar velocity; FGMRES + Schur fieldsplit with BoomerAMG on the velocity block for velocity-pressure; with a level set, block Gauss-Seidel of the flow and the level set by ILU)", "SlumpProblemConfigureKSP", kinds, 2, kinds[k], &k, NULL));
   PetscCall(PetscOptionsEList("-stokes_schur_pre", "Schur preconditioner of -linear_solver iterative (velocity-pressure): mass (pressure mass weighted by 1/(eta + rho cj |K|); the default without a level set) or selfp (B diag(A)^-1 B^T by BoomerAMG; the default with a level set)", "SlumpProblemConfigureKSP", pres, 2, pres[sp], &sp, &spSet));
-  PetscCall(PetscOptionsInt("-linear_escalate_its", "With -linear_solver iterative (velocity-pressure, no level set): a Krylov solve that passes this many iterations is repeated, and every later one made, with an inner GMRES solve of the velocity block to 1e-2 (0: never; ignored when -fieldsplit_u_ksp_type is given)", "SlumpProblemKSPSolve", prob->linEscalateIts, &prob->linEscalateIts, NULL));
+  PetscCall(PetscOptionsInt("-linear_escalate_its", "With -linear_solver iterative (velocity-pressure, plane, no level set): a Krylov solve that passes this many iterations is repeated, and every later one made, with the velocity block deflated on the rigid motions of its stiff regions (as -stokes_velocity_deflation 1e-4; skipped when that option is given), and on a second stall with an inner GMRES solve of the velocity block to 1e-2 (0: never; ignored when -fieldsplit_u_ksp_type is given)", "SlumpProblemKSPSolve", prob->linEscalateIts, &prob->linEscalateIts, NULL));
   PetscCheck(prob->linEscalateIts >= 0, prob->comm, PETSC_ERR_USER_INPUT, "-linear_escalate_its must be a non-negative number of iterations (0: never escalate); got %" PetscInt_FMT, prob->linEscalateIts);
   {
     /* the user's own velocity-block solve is not escalated (read before
@@ -45,7 +45,8 @@ PetscErrorCode SlumpProblemLinearSetFromOptions(SlumpProblem prob)
     PetscCall(PetscOptionsHasName(NULL, NULL, "-fieldsplit_flow_fieldsplit_u_ksp_type", &fu));
     if (!prob->linConfigured && (u || fu)) prob->linEscalateIts = 0;
   }
-  PetscCall(PetscOptionsReal("-stokes_velocity_deflation", "With -linear_solver iterative (velocity-pressure, plane, no level set): precondition the velocity block by two sweeps of a coarse correction on the rigid-body modes of each connected stiff region (diagonal above this fraction of the largest; 1e-4 recommended) and a BoomerAMG V-cycle; 0: off", "SlumpProblemKSPSolve", prob->linDeflation, &prob->linDeflation, NULL));
+  PetscCall(PetscOptionsReal("-stokes_velocity_deflation", "With -linear_solver iterative (velocity-pressure, plane, no level set): precondition the velocity block by two sweeps of a coarse correction on the rigid-body modes of each connected stiff region (diagonal above this fraction of the largest; 1e-4 recommended) and a BoomerAMG V-cycle; 0: off (also as the first rung of -linear_escalate_its)", "SlumpProblemKSPSolve", prob->linDeflation, &prob->linDeflation, &set));
+  if (set) prob->linDeflationSet = PETSC_TRUE;
   PetscCheck(prob->linDeflation >= 0 && prob->linDeflation < 1, prob->comm, PETSC_ERR_USER_INPUT, "-stokes_velocity_deflation must be a fraction in [0, 1) of the largest diagonal entry (0: off; 1e-4 recommended); got %g", (double)prob->linDeflation);
   PetscCall(PetscOptionsBool("-stokes_schur_pin_correction", "With -linear_solver iterative on enclosed flows (pressure fixed at one vertex; velocity-pressure, no level set): correct the Schur complement's preconditioner on the constant pressure, the pinned system's smallest mode", "SlumpProblemKSPSolve", prob->linPinCorrection, &prob->linPinCorrection, NULL));
   PetscCall(PetscOptionsEList("-linear_forcing", "Krylov tolerance of the steady Newton (KINSOL) with -linear_solver iterative: fixed (-ksp_rtol, default 1e-10) or eisenstat_walker (relative tolerance from the decrease of the residual, 1e-10 ... 1e-4); IDA's stages always solve to -ksp_rtol", "SlumpProblemConfigureKSP", forc, 2, forc[fo], &fo, NULL));
@@ -554,15 +555,17 @@ static PetscErrorCode WrapInShell(PC pc, PCType type, void *ctx, PetscErrorCode 
 
 /* The velocity block's PC (BoomerAMG, its options under its prefix) made the
    deflated preconditioner, unless it already is. */
-static PetscErrorCode DeflationAttach(SlumpProblem prob, KSP ku)
+static PetscErrorCode DeflationAttach(SlumpProblem prob, KSP ku, PetscBool *attached)
 {
   PC          pc;
   PetscBool   hyp;
   Deflation  *c;
   PetscFunctionBeginUser;
+  if (attached) *attached = PETSC_FALSE;
   PetscCall(KSPGetPC(ku, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCHYPRE, &hyp));
   if (!hyp) PetscFunctionReturn(0);
+  if (attached) *attached = PETSC_TRUE;
   PetscCall(PetscNew(&c));
   c->prob = prob;
   c->njac = -1;
@@ -680,7 +683,7 @@ static PetscErrorCode FreshVelocityPC(SlumpProblem prob, KSP ksp)
     prob->linVel = ku;
     if (prob->linPinCorrection && prob->pressurePinned && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0 && kp) PetscCall(PinCorrectionAttach(kp));
   }
-  if (prob->linVel && prob->linDeflation > 0 && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(DeflationAttach(prob, prob->linVel));
+  if (prob->linVel && prob->linDeflation > 0 && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0) PetscCall(DeflationAttach(prob, prob->linVel, NULL));
   prob->linJac = prob->njac;
   PetscFunctionReturn(0);
 }
@@ -704,18 +707,31 @@ PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KS
   PetscBool can = (PetscBool)(prob->linIterative && prob->formulation == SLUMP_FORMULATION_PLANE && prob->extraField < 0 && prob->linEscalateIts > 0), done;
   PetscFunctionBeginUser;
   if (prob->linIterative) PetscCall(FreshVelocityPC(prob, ksp));
-  if (can && prob->linEscalated) PetscCall(Escalate(prob, ksp, &done)); /* a KSP not yet switched */
-  if (!can || prob->linEscalated) PetscCall(Solve(ksp, b, x, reason, its));
+  if (can && prob->linEscalated == 2) PetscCall(Escalate(prob, ksp, &done)); /* a KSP not yet switched */
+  if (!can || prob->linEscalated == 2) PetscCall(Solve(ksp, b, x, reason, its));
   else {
     PetscCall(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &maxit));
     PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, PetscMin(maxit, prob->linEscalateIts)));
     PetscCall(Solve(ksp, b, x, reason, its));
+    /* first rung: the plugs' rigid motions deflated (two V-cycles per
+       application), unless the user chose the deflation */
+    if (*reason <= 0 && prob->linEscalated == 0 && !prob->linDeflationSet && prob->linVel) PetscCall(DeflationAttach(prob, prob->linVel, &done));
+    else done = PETSC_FALSE;
+    if (*reason <= 0 && prob->linEscalated == 0) prob->linEscalated = 1; /* the first rung is tried once */
+    if (*reason <= 0 && done) {
+      prob->linDeflation = 1e-4;
+      PetscCall(PetscPrintf(prob->comm, "linear: a Krylov solve stopped (%s after %" PetscInt_FMT " iterations); from now on the velocity block is deflated on the rigid motions of its stiff regions (-stokes_velocity_deflation 1e-4; -linear_escalate_its)\n", KSPConvergedReasons[*reason], *its));
+      its1 = *its;
+      PetscCall(Solve(ksp, b, x, reason, its));
+      *its += its1;
+    }
     PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, maxit));
     if (*reason <= 0) PetscCall(Escalate(prob, ksp, &done));
     if (*reason <= 0 && done) {
-      prob->linEscalated = PETSC_TRUE;
+      PetscInt its2 = *its - its1;
+      prob->linEscalated = 2;
       its1               = *its;
-      PetscCall(PetscPrintf(prob->comm, "linear: a Krylov solve stopped (%s after %" PetscInt_FMT " iterations); from now on the velocity block is solved by GMRES to 1e-2 in each application (-linear_escalate_its)\n", KSPConvergedReasons[*reason], its1));
+      PetscCall(PetscPrintf(prob->comm, "linear: a Krylov solve stopped (%s after %" PetscInt_FMT " iterations); from now on the velocity block is solved by GMRES to 1e-2 in each application (-linear_escalate_its)\n", KSPConvergedReasons[*reason], its2));
       PetscCall(Solve(ksp, b, x, reason, its));
       *its += its1;
     }

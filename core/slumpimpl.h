@@ -99,10 +99,13 @@ struct _n_SlumpProblem {
   PetscBool     schurPreSet; /* by the user; else mass, selfp with a level set */
   PetscBool     linForcing; /* Eisenstat-Walker tolerances in KINSOL's Newton */
   /* velocity-pressure: a Krylov solve that passes linEscalateIts iterations
-     (0: never) switches every solve of the run to an inner GMRES solve of
-     the velocity block (SlumpProblemKSPSolve); linEscalated once it has */
+     (0: never) switches every later solve of the run, first to the
+     deflated velocity block (unless deflation was set by the user), on a
+     second stall to an inner GMRES solve of the velocity block
+     (SlumpProblemKSPSolve); linEscalated: the rungs taken, 0, 1 or 2 */
   PetscInt      linEscalateIts;
-  PetscBool     linEscalated;
+  PetscInt      linEscalated;
+  PetscBool     linDeflationSet; /* -stokes_velocity_deflation given */
   KSP           linOuter, linVel; /* the last solve's KSP and its velocity block's (referenced) */
   PetscInt      linJac;        /* the Jacobian count at that solve */
   PetscReal     linDeflation;  /* -stokes_velocity_deflation: stiffness fraction of the deflated regions, 0: off */
