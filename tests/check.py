@@ -888,7 +888,7 @@ def test_stability_linear_iterative_stiff():
     16 x 64, 9 233 unknowns): one BoomerAMG V-cycle per application stalls
     (a solve passes the default -linear_escalate_its 1000), the run switches
     to the deflated velocity block (first rung; measured: no second switch,
-    5 776 Krylov iterations, 23 s, against 5 909 and 26 s when the switch
+    5 776 Krylov iterations, 23 s, against 5 909 and 40 s when the switch
     went to the inner GMRES solve at once) and converges to LU's solution
     (equal to 1e-8). Before the switch existed this run failed."""
     linear_iterative_escalation(work("linear_iterative_stiff"), "16", "1e6", "1000", ["deflated"])
