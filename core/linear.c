@@ -373,6 +373,7 @@ typedef struct {
 
 #define DEFLATION_MAX_REGIONS 16 /* per rank, the largest */
 #define DEFLATION_MIN_DOFS    6
+#define DEFLATION_RECOMMENDED 1e-4 /* delta of the escalation's first rung */
 
 static PetscInt RootOf(PetscInt *parent, PetscInt i)
 {
@@ -715,15 +716,17 @@ PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KS
     PetscCall(Solve(ksp, b, x, reason, its));
     /* first rung: the plugs' rigid motions deflated (two V-cycles per
        application), unless the user chose the deflation */
-    if (*reason <= 0 && prob->linEscalated == 0 && !prob->linDeflationSet && prob->linVel) PetscCall(DeflationAttach(prob, prob->linVel, &done));
-    else done = PETSC_FALSE;
-    if (*reason <= 0 && prob->linEscalated == 0) prob->linEscalated = 1; /* the first rung is tried once */
-    if (*reason <= 0 && done) {
-      prob->linDeflation = 1e-4;
-      PetscCall(PetscPrintf(prob->comm, "linear: a Krylov solve stopped (%s after %" PetscInt_FMT " iterations); from now on the velocity block is deflated on the rigid motions of its stiff regions (-stokes_velocity_deflation 1e-4; -linear_escalate_its)\n", KSPConvergedReasons[*reason], *its));
-      its1 = *its;
-      PetscCall(Solve(ksp, b, x, reason, its));
-      *its += its1;
+    if (*reason <= 0 && prob->linEscalated == 0) {
+      done               = PETSC_FALSE;
+      prob->linEscalated = 1; /* the first rung is tried once */
+      if (!prob->linDeflationSet && prob->linVel) PetscCall(DeflationAttach(prob, prob->linVel, &done));
+      if (done) {
+        prob->linDeflation = DEFLATION_RECOMMENDED;
+        PetscCall(PetscPrintf(prob->comm, "linear: a Krylov solve stopped (%s after %" PetscInt_FMT " iterations); from now on the velocity block is deflated on the rigid motions of its stiff regions (-stokes_velocity_deflation %g; -linear_escalate_its)\n", KSPConvergedReasons[*reason], *its, DEFLATION_RECOMMENDED));
+        its1 = *its;
+        PetscCall(Solve(ksp, b, x, reason, its));
+        *its += its1;
+      }
     }
     PetscCall(KSPSetTolerances(ksp, rtol, abstol, dtol, maxit));
     if (*reason <= 0) PetscCall(Escalate(prob, ksp, &done));
