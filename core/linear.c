@@ -698,6 +698,76 @@ static PetscErrorCode Solve(KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, P
   PetscFunctionReturn(0);
 }
 
+/* MUMPS's LU of a -linear_solver direct solve stopped on its workspace
+   (ksp's PC failed): INFOG(1) = -8 or -9, too small: the relaxation
+   ICNTL(14) raised 4-fold; -13, its allocation failed: lowered 10-fold,
+   down to MUMPS's own +20 % (our +1000 % asked 31 GB for the 2.7 GB of
+   factors of poiseuille on 1.0e6 unknowns). Only where the value is ours
+   (SlumpKSPSetDirect's default), kept for the later factorisations under
+   ksp's prefix. retry: factorise again; otherwise f->what says why it failed. */
+static PetscErrorCode DirectFailure(SlumpProblem prob, KSP ksp, SlumpLinearFailures *f, PetscBool *retry)
+{
+  PC        pc;
+  PetscBool lu;
+  PetscFunctionBeginUser;
+  *retry    = PETSC_FALSE;
+  f->direct = PETSC_TRUE;
+  PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the direct solve of -linear_solver direct failed (%s)", KSPConvergedReasons[f->reason]));
+  PetscCall(KSPGetPC(ksp, &pc));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
+  if (!lu) PetscFunctionReturn(0);
+#if defined(PETSC_HAVE_MUMPS)
+  {
+    Mat           F, A, P;
+    MatSolverType type;
+    PetscBool     mumps;
+    PetscInt      info1, info2, relax, next = -1;
+    PetscObject   ours;
+    const char   *prefix;
+    char          name[256], value[32];
+    PetscCall(PCFactorGetMatrix(pc, &F));
+    PetscCall(MatFactorGetSolverType(F, &type));
+    PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
+    if (!mumps) PetscFunctionReturn(0);
+    PetscCall(MatMumpsGetInfog(F, 1, &info1));
+    PetscCall(MatMumpsGetInfog(F, 2, &info2));
+    PetscCall(MatMumpsGetIcntl(F, 14, &relax));
+    PetscCall(PetscObjectQuery((PetscObject)ksp, "slump_mumps_relax_default", &ours));
+    if (info1 == -13) {
+      /* INFOG(2): the size asked, in entries (in millions if negative) */
+      const double gb = (info2 < 0 ? -1e6 * info2 : (double)info2) * sizeof(PetscScalar) / 1e9;
+      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) could not allocate its workspace of %.1f GB (INFOG(1) = -13 with -mat_mumps_icntl_14 %" PetscInt_FMT "); use -linear_solver iterative (see docs/performance.md), more ranks or a coarser mesh", gb, relax));
+      if (ours && relax > 20) next = PetscMax(20, relax / 10);
+    } else if (info1 == -8 || info1 == -9) {
+      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) ran out of workspace (INFOG(1) = %" PetscInt_FMT " with -mat_mumps_icntl_14 %" PetscInt_FMT "); raise -mat_mumps_icntl_14 or use -linear_solver iterative", info1, relax));
+      if (ours && relax < 100000) next = PetscMin(100000, 4 * relax);
+    } else if (info1 == -19) {
+      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) needs more memory than -mat_mumps_icntl_23 allows (INFOG(1) = -19)"));
+    } else if (info1 == -10) {
+      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) found the matrix numerically singular (INFOG(1) = -10)"));
+    } else {
+      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) failed with INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT " (the codes are in MUMPS's manual)", info1, info2));
+    }
+    if (next < 0) PetscFunctionReturn(0);
+    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%smat_mumps_icntl_14", prefix ? prefix : ""));
+    PetscCall(PetscSNPrintf(value, sizeof(value), "%" PetscInt_FMT, next));
+    PetscCall(PetscOptionsSetValue(NULL, name, value));
+    PetscCall(PetscPrintf(prob->comm, "linear: MUMPS's LU %s (INFOG(1) = %" PetscInt_FMT "); factorising again with its workspace relaxed by %" PetscInt_FMT " %% instead of %" PetscInt_FMT " %% (%s)\n", info1 == -13 ? "could not allocate its workspace" : "ran out of workspace", info1, next, relax, name));
+    /* a new factorisation: the PC forgets its factors, the KSP keeps its operators */
+    PetscCall(KSPGetOperators(ksp, &A, &P));
+    PetscCall(PetscObjectReference((PetscObject)A));
+    PetscCall(PetscObjectReference((PetscObject)P));
+    PetscCall(PCReset(pc));
+    PetscCall(KSPSetOperators(ksp, A, P));
+    PetscCall(MatDestroy(&A));
+    PetscCall(MatDestroy(&P));
+    *retry = PETSC_TRUE;
+  }
+#endif
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, PetscInt *its)
 {
   PetscInt  maxit, its1 = 0;
@@ -709,6 +779,27 @@ PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KS
   PetscFunctionBeginUser;
   if (prob->linIterative) PetscCall(FreshVelocityPC(prob, ksp));
   if (can && prob->linEscalated == 2) PetscCall(Escalate(prob, ksp, &done)); /* a KSP not yet switched */
+  if (!prob->linIterative) {
+    PetscBool retry = PETSC_TRUE;
+    for (PetscInt k = 0; retry && k < 4; ++k) {
+      PetscCall(Solve(ksp, b, x, reason, its));
+      retry = PETSC_FALSE;
+      if (*reason == KSP_DIVERGED_PC_FAILED) {
+        prob->linFail.reason = *reason;
+        PetscCall(DirectFailure(prob, ksp, &prob->linFail, &retry));
+      }
+    }
+    if (*reason <= 0) {
+      prob->linFail.n++;
+      prob->linFail.its    = *its;
+      prob->linFail.reason = *reason;
+      if (*reason != KSP_DIVERGED_PC_FAILED) {
+        prob->linFail.direct = PETSC_TRUE;
+        PetscCall(PetscSNPrintf(prob->linFail.what, sizeof(prob->linFail.what), "the direct solve of -linear_solver direct failed (%s)", KSPConvergedReasons[*reason]));
+      }
+    }
+    PetscFunctionReturn(0);
+  }
   if (!can || prob->linEscalated == 2) PetscCall(Solve(ksp, b, x, reason, its));
   else {
     PetscCall(KSPGetTolerances(ksp, &rtol, &abstol, &dtol, &maxit));
@@ -743,6 +834,8 @@ PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KS
     prob->linFail.n++;
     prob->linFail.its    = *its - its1;
     prob->linFail.reason = *reason;
+    prob->linFail.direct = PETSC_FALSE;
+    prob->linFail.what[0] = 0;
   }
   PetscFunctionReturn(0);
 }

@@ -1072,14 +1072,22 @@ PetscErrorCode SlumpKSPSetDirect(KSP ksp)
     /* MUMPS's workspace +1000 % (ICNTL(14), its default is +20 %) unless
        the user sets it: with density ratios of 1e-3 the delayed pivots
        overflow the default estimate (INFOG(1) = -9); +200 % was still short
-       for column_collapse's consistent initialisation on 8e3 cells */
+       for column_collapse's consistent initialisation on 8e3 cells. Where
+       that allocation fails (1e6 Taylor-Hood unknowns: 31 GB asked for
+       2.7 GB of factors), SlumpProblemKSPSolve lowers it again */
     const char *prefix;
     char        name[256];
     PetscBool   has;
     PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
     PetscCall(PetscSNPrintf(name, sizeof(name), "-%smat_mumps_icntl_14", prefix ? prefix : ""));
     PetscCall(PetscOptionsHasName(NULL, NULL, name, &has));
-    if (!has) PetscCall(PetscOptionsSetValue(NULL, name, "1000"));
+    if (!has) {
+      PetscContainer mark; /* the value is ours: SlumpProblemKSPSolve may change it */
+      PetscCall(PetscOptionsSetValue(NULL, name, "1000"));
+      PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)ksp), &mark));
+      PetscCall(PetscObjectCompose((PetscObject)ksp, "slump_mumps_relax_default", (PetscObject)mark));
+      PetscCall(PetscContainerDestroy(&mark));
+    }
   }
 #endif
   PetscCall(KSPSetFromOptions(ksp));

@@ -426,13 +426,20 @@ PETSC_EXTERN PetscErrorCode SlumpProblemConfigureInitKSP(SlumpProblem prob, KSP 
 /* KSPSolve with the problem's escalation (core/linear.c): with -linear_solver
    iterative on velocity-pressure, a solve that passes -linear_escalate_its
    iterations is repeated, and every later solve made, with an inner GMRES
-   solve of the velocity block. its: the outer iterations of all attempts. */
+   solve of the velocity block. its: the outer iterations of all attempts.
+   With -linear_solver direct, a MUMPS factorisation that stops on its
+   workspace is done again with the relaxation -mat_mumps_icntl_14 lowered
+   (allocation failed) or raised (workspace too small), where it is ours. */
 PETSC_EXTERN PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, PetscInt *its);
 /* Krylov solves of SlumpProblemKSPSolve that did not converge: how many
-   (over the run), and the last one's iterations and reason */
+   (over the run), and the last one's iterations and reason; direct: the last
+   one was -linear_solver direct, whose LU factorisation failed, what: why
+   and what to do, as the end of a sentence */
 typedef struct {
   PetscInt           n, its;
   KSPConvergedReason reason;
+  PetscBool          direct;
+  char               what[320];
 } SlumpLinearFailures;
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearFailures(SlumpProblem prob, SlumpLinearFailures *f);
 /* true with -linear_solver iterative and -linear_forcing eisenstat_walker */

@@ -1036,6 +1036,69 @@ def linear_iterative_failure(w):
             fail("Krylov failure, %s: expected one sentence containing %s, got:\n%s" % (scene, want, p.stderr))
 
 
+def test_linear_direct_workspace():
+    """MUMPS's LU under a memory cap (an address-space limit of 700 MB, set
+    for the run alone): Bingham Poiseuille 32 x 128 (36 897 unknowns), whose
+    workspace with our default relaxation (+1000 %, -mat_mumps_icntl_14)
+    is estimated at 591 MB. (1) With the default the first allocation fails
+    (INFOG(1) = -13), one line says the factorisation is done again with
+    +100 %, and the run gives the uncapped run's results (equal to 1e-12
+    relative: the relaxation sizes the workspace, not the pivots). This is
+    what let LU run Poiseuille 168 x 672 (1.0e6 unknowns), where +1000 %
+    asked for 31 GB for 2.7 GB of factors. (2) A relaxation the user gave
+    is kept: the run ends with one sentence naming the failed allocation
+    (its size in GB), -mat_mumps_icntl_14 and -linear_solver iterative.
+    (3) Other MUMPS failures are named with their code: -mat_mumps_icntl_23 1
+    (1 MB allowed) in the steady Newton solve and in IDA's first step."""
+    import resource
+    w = work("linear_direct_workspace")
+    cap = 700 * 1024 * 1024
+
+    def capped():
+        resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
+
+    base = ["-scene", "poiseuille", "-mesh_nx", "32", "-mesh_ny", "128", "-linear_solver", "direct", "-output_fields", "0", "-quiet"]
+    ref = os.path.join(w, "uncapped")
+    subprocess.run([ARGS.slump] + base + ["-output_dir", ref], capture_output=True, text=True, check=True)
+    d = os.path.join(w, "capped")
+    p = subprocess.run([ARGS.slump] + base + ["-output_dir", d], capture_output=True, text=True, preexec_fn=capped)
+    if p.returncode != 0:
+        fail("capped LU: expected the run to succeed after the retry, got exit %d:\n%s" % (p.returncode, p.stderr[-2000:]))
+    lines = [l for l in p.stdout.splitlines() if l.startswith("linear: MUMPS's LU")]
+    print("capped LU: %s" % (lines or ["(no retry line)"])[0])
+    if len(lines) != 1 or "could not allocate" not in lines[0] or "100 % instead of 1000 %" not in lines[0]:
+        fail("capped LU: expected one line announcing the retry with 100 % instead of 1000 %, got %s" % lines)
+    a, b = summary(ref), summary(d)
+    for k in ("flow_rate", "err_u_l2", "kinetic_energy"):
+        if k not in a:
+            continue
+        rel = abs(a[k] - b[k]) / max(abs(a[k]), 1e-300)
+        print("  %-16s uncapped %.12e  capped %.12e  rel diff %.2e" % (k, a[k], b[k], rel))
+        if not rel <= 1e-12:
+            fail("capped LU %s: expected the uncapped result to 1e-12 relative, got %g" % (k, rel))
+    # (2) the user's own relaxation is not changed
+    d = os.path.join(w, "capped_user")
+    p = subprocess.run([ARGS.slump] + base + ["-output_dir", d, "-mat_mumps_icntl_14", "1000"], capture_output=True, text=True, preexec_fn=capped)
+    err = [l for l in p.stderr.splitlines() if l.strip()]
+    print("capped LU, user's relaxation: exit %d: %s" % (p.returncode, err[0] if err else "(no message)"))
+    m = re.search(r"could not allocate its workspace of ([0-9.]+) GB \(INFOG\(1\) = -13 with -mat_mumps_icntl_14 1000\); use -linear_solver iterative", err[0] if err else "")
+    if p.returncode <= 0 or p.returncode > 128 or len(err) != 1 or "PETSC ERROR" in p.stderr or not m or "linear: MUMPS's LU" in p.stdout:
+        fail("capped LU with -mat_mumps_icntl_14 1000: expected no retry and one sentence naming the failed allocation, got exit %d:\n%s" % (p.returncode, p.stderr))
+    if not 0.3 <= float(m.group(1)) <= 0.7:
+        fail("capped LU: expected the failed allocation to be the estimated ~0.55 GB workspace, got %s GB" % m.group(1))
+    # (3) other codes
+    cases = (("poiseuille", ["-mesh_nx", "8", "-mesh_ny", "32"], "The steady Newton solve did not converge at m = 10000 because"),
+             ("couette_cessation", ["-mesh_nx", "2", "-mesh_ny", "16"], "IDA failed at t = 0.: IDA_CONV_FAIL because"))
+    for scene, opts, head in cases:
+        d = os.path.join(w, "icntl23_" + scene)
+        p = subprocess.run([ARGS.slump, "-scene", scene, "-output_fields", "0", "-quiet", "-output_dir", d, "-mat_mumps_icntl_23", "1"] + opts, capture_output=True, text=True)
+        err = [l for l in p.stderr.splitlines() if l.strip()]
+        want = head + " the LU factorisation (MUMPS) needs more memory than -mat_mumps_icntl_23 allows (INFOG(1) = -19)"
+        print("MUMPS -19, %s: exit %d: %s" % (scene, p.returncode, err[0] if err else "(no message)"))
+        if p.returncode <= 0 or p.returncode > 128 or len(err) != 1 or "PETSC ERROR" in p.stderr or want not in err[0]:
+            fail("MUMPS -19, %s: expected one sentence containing %r, got exit %d:\n%s" % (scene, want, p.returncode, p.stderr))
+
+
 def test_linear_iterative_parallel():
     """-linear_solver iterative on 2 ranks against LU on 1: steady Bingham
     Poiseuille equal to 1e-8, duct_cessation's arrest time and the two-phase

@@ -145,6 +145,7 @@ PetscErrorCode SlumpIntegratorSolve_BDF2(SlumpIntegrator ti, Vec X)
     if (!conv) {
       SlumpLinearFailures lf;
       PetscCall(SlumpImplicitSolverGetLinearFailures(s, &lf));
+      PetscCheck(!lf.n || !lf.direct, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g because %s", (double)tn1, lf.what);
       PetscCheck(!lf.n, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g because a Krylov solve of -linear_solver iterative did not (%s after %" PetscInt_FMT " iterations); use -linear_solver direct or a stronger preconditioner (see docs/performance.md)", (double)tn1, KSPConvergedReasons[lf.reason], lf.its);
     }
     PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "Fixed-step BDF2: Newton did not converge at t = %g; reduce -time_dt, raise -newton_max_it, or use -newton_linearisation stress_velocity", (double)tn1);

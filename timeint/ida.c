@@ -417,6 +417,7 @@ PetscErrorCode SlumpIntegratorSolve_IDA(SlumpIntegrator ti, Vec X)
       PetscCall(PetscStrallocpy(name, &name));
       /* the step failed because Krylov solves did: say so */
       PetscCall(SlumpProblemGetLinearFailures(ti->prob, &lf));
+      if (lf.n > lf0.n && lf.direct) SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s because %s", (double)tret, name, lf.what);
       if (lf.n > lf0.n) SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s because %" PetscInt_FMT " Krylov solves of -linear_solver iterative did not converge (the last: %s after %" PetscInt_FMT " iterations); use -linear_solver direct or a stronger preconditioner (see docs/performance.md)", (double)tret, name, lf.n - lf0.n, KSPConvergedReasons[lf.reason], lf.its);
       if (flag == IDA_CONV_FAIL && !sv && !ti->linesearch) SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s (the primal Newton; -newton_linearisation stress_velocity converges on stiff yield laws, or try -ida_nonlinear_solver linesearch)", (double)tret, name);
       if (flag == IDA_CONV_FAIL) SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "IDA failed at t = %g: %s (raise -ida_max_nonlin_iters, e.g. 8, or try -ida_nonlinear_solver linesearch)", (double)tret, name);

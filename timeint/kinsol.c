@@ -365,6 +365,7 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
         char             at[64] = "";
         PetscCall(SlumpProblemGetFormulation(prob, &form));
         if (regname) (void)snprintf(at, sizeof(at), " at %s = %g", regname, (double)v); /* C's %g: no trailing point */
+        PetscCheck(!lf.direct, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge%s because %s", at, lf.what);
         SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge%s because a Krylov solve of -linear_solver iterative did not (%s after %" PetscInt_FMT " iterations); use -linear_solver direct%s (see docs/performance.md)", at, KSPConvergedReasons[lf.reason], lf.its,
                 form == SLUMP_FORMULATION_PLANE ? ", or an inner Krylov solve of the velocity block (-fieldsplit_u_ksp_type gmres -fieldsplit_u_ksp_rtol 1e-2)" : "");
       }
