@@ -704,15 +704,15 @@ static PetscErrorCode Solve(KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, P
    down to MUMPS's own +20 % (our +1000 % asked 31 GB for the 2.7 GB of
    factors of poiseuille on 1.0e6 unknowns). Only where the value is ours
    (SlumpKSPSetDirect's default), kept for the later factorisations under
-   ksp's prefix. retry: factorise again; otherwise f->what says why it failed. */
-static PetscErrorCode DirectFailure(SlumpProblem prob, KSP ksp, SlumpLinearFailures *f, PetscBool *retry)
+   ksp's prefix. retry: factorise again; otherwise what says why it failed
+   (the end of a sentence), whatever ksp's PC. */
+PetscErrorCode SlumpKSPDirectFailure(KSP ksp, KSPConvergedReason reason, char what[], size_t len, PetscBool *retry)
 {
   PC        pc;
   PetscBool lu;
   PetscFunctionBeginUser;
-  *retry    = PETSC_FALSE;
-  f->direct = PETSC_TRUE;
-  PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the direct solve of -linear_solver direct failed (%s)", KSPConvergedReasons[f->reason]));
+  *retry = PETSC_FALSE;
+  PetscCall(PetscSNPrintf(what, len, "the direct solve failed (%s)", KSPConvergedReasons[reason]));
   PetscCall(KSPGetPC(ksp, &pc));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCLU, &lu));
   if (!lu) PetscFunctionReturn(0);
@@ -724,7 +724,10 @@ static PetscErrorCode DirectFailure(SlumpProblem prob, KSP ksp, SlumpLinearFailu
     PetscInt      info1, info2, relax, next = -1;
     PetscObject   ours;
     const char   *prefix;
-    char          name[256], value[32];
+    char          name[256], value[32], icntl23[256];
+    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "-%smat_mumps_icntl_14", prefix ? prefix : ""));
+    PetscCall(PetscSNPrintf(icntl23, sizeof(icntl23), "-%smat_mumps_icntl_23", prefix ? prefix : ""));
     PetscCall(PCFactorGetMatrix(pc, &F));
     PetscCall(MatFactorGetSolverType(F, &type));
     PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
@@ -736,24 +739,22 @@ static PetscErrorCode DirectFailure(SlumpProblem prob, KSP ksp, SlumpLinearFailu
     if (info1 == -13) {
       /* INFOG(2): the size asked, in entries (in millions if negative) */
       const double gb = (info2 < 0 ? -1e6 * info2 : (double)info2) * sizeof(PetscScalar) / 1e9;
-      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) could not allocate its workspace of %.1f GB (INFOG(1) = -13 with -mat_mumps_icntl_14 %" PetscInt_FMT "); use -linear_solver iterative (see docs/performance.md), more ranks or a coarser mesh", gb, relax));
+      PetscCall(PetscSNPrintf(what, len, "the LU factorisation (MUMPS) could not allocate its workspace of %.1f GB (INFOG(1) = -13 with %s %" PetscInt_FMT "); use -linear_solver iterative (see docs/performance.md), more ranks or a coarser mesh", gb, name, relax));
       if (ours && relax > 20) next = PetscMax(20, relax / 10);
     } else if (info1 == -8 || info1 == -9) {
-      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) ran out of workspace (INFOG(1) = %" PetscInt_FMT " with -mat_mumps_icntl_14 %" PetscInt_FMT "); raise -mat_mumps_icntl_14 or use -linear_solver iterative", info1, relax));
+      PetscCall(PetscSNPrintf(what, len, "the LU factorisation (MUMPS) ran out of workspace (INFOG(1) = %" PetscInt_FMT " with %s %" PetscInt_FMT "); raise %s or use -linear_solver iterative", info1, name, relax, name));
       if (ours && relax < 100000) next = PetscMin(100000, 4 * relax);
     } else if (info1 == -19) {
-      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) needs more memory than -mat_mumps_icntl_23 allows (INFOG(1) = -19)"));
+      PetscCall(PetscSNPrintf(what, len, "the LU factorisation (MUMPS) needs more memory than %s allows (INFOG(1) = -19)", icntl23));
     } else if (info1 == -10) {
-      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) found the matrix numerically singular (INFOG(1) = -10)"));
+      PetscCall(PetscSNPrintf(what, len, "the LU factorisation (MUMPS) found the matrix numerically singular (INFOG(1) = -10)"));
     } else {
-      PetscCall(PetscSNPrintf(f->what, sizeof(f->what), "the LU factorisation (MUMPS) failed with INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT " (the codes are in MUMPS's manual)", info1, info2));
+      PetscCall(PetscSNPrintf(what, len, "the LU factorisation (MUMPS) failed with INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT " (the codes are in MUMPS's manual)", info1, info2));
     }
     if (next < 0) PetscFunctionReturn(0);
-    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-    PetscCall(PetscSNPrintf(name, sizeof(name), "-%smat_mumps_icntl_14", prefix ? prefix : ""));
     PetscCall(PetscSNPrintf(value, sizeof(value), "%" PetscInt_FMT, next));
     PetscCall(PetscOptionsSetValue(NULL, name, value));
-    PetscCall(PetscPrintf(prob->comm, "linear: MUMPS's LU %s (INFOG(1) = %" PetscInt_FMT "); factorising again with its workspace relaxed by %" PetscInt_FMT " %% instead of %" PetscInt_FMT " %% (%s)\n", info1 == -13 ? "could not allocate its workspace" : "ran out of workspace", info1, next, relax, name));
+    PetscCall(PetscPrintf(PetscObjectComm((PetscObject)ksp), "linear: MUMPS's LU %s (INFOG(1) = %" PetscInt_FMT "); factorising again with its workspace relaxed by %" PetscInt_FMT " %% instead of %" PetscInt_FMT " %% (%s)\n", info1 == -13 ? "could not allocate its workspace" : "ran out of workspace", info1, next, relax, name));
     /* a new factorisation: the PC forgets its factors, the KSP keeps its operators */
     PetscCall(KSPGetOperators(ksp, &A, &P));
     PetscCall(PetscObjectReference((PetscObject)A));
@@ -785,8 +786,8 @@ PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KS
       PetscCall(Solve(ksp, b, x, reason, its));
       retry = PETSC_FALSE;
       if (*reason == KSP_DIVERGED_PC_FAILED) {
-        prob->linFail.reason = *reason;
-        PetscCall(DirectFailure(prob, ksp, &prob->linFail, &retry));
+        prob->linFail.direct = PETSC_TRUE;
+        PetscCall(SlumpKSPDirectFailure(ksp, *reason, prob->linFail.what, sizeof(prob->linFail.what), &retry));
       }
     }
     if (*reason <= 0) {
@@ -795,7 +796,7 @@ PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KS
       prob->linFail.reason = *reason;
       if (*reason != KSP_DIVERGED_PC_FAILED) {
         prob->linFail.direct = PETSC_TRUE;
-        PetscCall(PetscSNPrintf(prob->linFail.what, sizeof(prob->linFail.what), "the direct solve of -linear_solver direct failed (%s)", KSPConvergedReasons[*reason]));
+        PetscCall(PetscSNPrintf(prob->linFail.what, sizeof(prob->linFail.what), "the direct solve failed (%s)", KSPConvergedReasons[*reason]));
       }
     }
     PetscFunctionReturn(0);

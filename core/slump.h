@@ -442,6 +442,11 @@ typedef struct {
   char               what[320];
 } SlumpLinearFailures;
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearFailures(SlumpProblem prob, SlumpLinearFailures *f);
+/* A direct solve of ksp (LU) that ended with KSP_DIVERGED_PC_FAILED: a MUMPS
+   factorisation that stopped on its workspace is prepared again with the
+   relaxation changed, where it is SlumpKSPSetDirect's default (retry: solve
+   again; one line says so); what: why it failed, the end of a sentence. */
+PETSC_EXTERN PetscErrorCode SlumpKSPDirectFailure(KSP ksp, KSPConvergedReason reason, char what[], size_t len, PetscBool *retry);
 /* true with -linear_solver iterative and -linear_forcing eisenstat_walker */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearForcing(SlumpProblem prob, PetscBool *ew);
 

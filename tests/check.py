@@ -1048,8 +1048,10 @@ def test_linear_direct_workspace():
     asked for 31 GB for 2.7 GB of factors. (2) A relaxation the user gave
     is kept: the run ends with one sentence naming the failed allocation
     (its size in GB), -mat_mumps_icntl_14 and -linear_solver iterative.
-    (3) Other MUMPS failures are named with their code: -mat_mumps_icntl_23 1
-    (1 MB allowed) in the steady Newton solve and in IDA's first step."""
+    (3) Other MUMPS failures are named with their code and option:
+    -mat_mumps_icntl_23 1 (1 MB allowed) in the steady Newton solve and in
+    IDA's first step, -ic_mat_mumps_icntl_23 1 in the consistent
+    initialisation."""
     import resource
     w = work("linear_direct_workspace")
     cap = 700 * 1024 * 1024
@@ -1087,13 +1089,15 @@ def test_linear_direct_workspace():
     if not 0.3 <= float(m.group(1)) <= 0.7:
         fail("capped LU: expected the failed allocation to be the estimated ~0.55 GB workspace, got %s GB" % m.group(1))
     # (3) other codes
-    cases = (("poiseuille", ["-mesh_nx", "8", "-mesh_ny", "32"], "The steady Newton solve did not converge at m = 10000 because"),
-             ("couette_cessation", ["-mesh_nx", "2", "-mesh_ny", "16"], "IDA failed at t = 0.: IDA_CONV_FAIL because"))
-    for scene, opts, head in cases:
+    cases = (("poiseuille", ["-mesh_nx", "8", "-mesh_ny", "32"], "", "The steady Newton solve did not converge at m = 10000 because"),
+             ("couette_cessation", ["-mesh_nx", "2", "-mesh_ny", "16"], "", "IDA failed at t = 0.: IDA_CONV_FAIL because"),
+             ("cavity_cessation", ["-mesh_nx", "8", "-mesh_ny", "8"], "ic_", "The consistent-initialisation solve failed because"))
+    for scene, opts, prefix, head in cases:
         d = os.path.join(w, "icntl23_" + scene)
-        p = subprocess.run([ARGS.slump, "-scene", scene, "-output_fields", "0", "-quiet", "-output_dir", d, "-mat_mumps_icntl_23", "1"] + opts, capture_output=True, text=True)
+        opt = "-%smat_mumps_icntl_23" % prefix
+        p = subprocess.run([ARGS.slump, "-scene", scene, "-output_fields", "0", "-quiet", "-output_dir", d, opt, "1"] + opts, capture_output=True, text=True)
         err = [l for l in p.stderr.splitlines() if l.strip()]
-        want = head + " the LU factorisation (MUMPS) needs more memory than -mat_mumps_icntl_23 allows (INFOG(1) = -19)"
+        want = head + " the LU factorisation (MUMPS) needs more memory than %s allows (INFOG(1) = -19)" % opt
         print("MUMPS -19, %s: exit %d: %s" % (scene, p.returncode, err[0] if err else "(no message)"))
         if p.returncode <= 0 or p.returncode > 128 or len(err) != 1 or "PETSC ERROR" in p.stderr or want not in err[0]:
             fail("MUMPS -19, %s: expected one sentence containing %r, got exit %d:\n%s" % (scene, want, p.returncode, p.stderr))

@@ -50,8 +50,9 @@ static int IdaRoot(realtype t, N_Vector yy, N_Vector yp, realtype *gout, void *u
 static PetscErrorCode InitSolve(KSP ksp, Vec F, Vec W)
 {
   KSPConvergedReason reason;
-  PetscBool          direct;
-  MPI_Comm           comm = PetscObjectComm((PetscObject)ksp);
+  PetscBool          direct, retry = PETSC_TRUE;
+  MPI_Comm           comm     = PetscObjectComm((PetscObject)ksp);
+  char               what[320] = "";
   PetscFunctionBeginUser;
   PetscCall(KSPSolve(ksp, F, W));
   PetscCall(KSPGetConvergedReason(ksp, &reason));
@@ -64,6 +65,15 @@ static PetscErrorCode InitSolve(KSP ksp, Vec F, Vec W)
     PetscCall(KSPSolve(ksp, F, W));
     PetscCall(KSPGetConvergedReason(ksp, &reason));
   }
+  /* an LU that stopped on its workspace: again with the relaxation changed */
+  for (PetscInt k = 0; reason == KSP_DIVERGED_PC_FAILED && retry && k < 4; ++k) {
+    PetscCall(SlumpKSPDirectFailure(ksp, reason, what, sizeof(what), &retry));
+    if (retry) {
+      PetscCall(KSPSolve(ksp, F, W));
+      PetscCall(KSPGetConvergedReason(ksp, &reason));
+    }
+  }
+  PetscCheck(reason > 0 || !what[0], comm, PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed because %s", what);
   PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed (KSP reason %s)", KSPConvergedReasons[reason]);
   PetscFunctionReturn(0);
 }
