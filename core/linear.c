@@ -704,9 +704,9 @@ static PetscErrorCode Solve(KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, P
    down to MUMPS's own +20 % (our +1000 % asked 31 GB for the 2.7 GB of
    factors of poiseuille on 1.0e6 unknowns). Only where the value is ours
    (SlumpKSPSetDirect's default), kept for the later factorisations under
-   ksp's prefix. retry: factorise again; otherwise what says why it failed
-   (the end of a sentence), whatever ksp's PC. */
-PetscErrorCode SlumpKSPDirectFailure(KSP ksp, KSPConvergedReason reason, char what[], size_t len, PetscBool *retry)
+   ksp's prefix. retry: factorise again (the PC is reset); what: why it
+   failed, the end of a sentence, whatever ksp's PC. */
+static PetscErrorCode DirectFailure(KSP ksp, KSPConvergedReason reason, char what[], size_t len, PetscBool *retry)
 {
   PC        pc;
   PetscBool lu;
@@ -769,6 +769,22 @@ PetscErrorCode SlumpKSPDirectFailure(KSP ksp, KSPConvergedReason reason, char wh
   PetscFunctionReturn(0);
 }
 
+PetscErrorCode SlumpKSPSolveDirect(KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, char what[], size_t len)
+{
+  PetscBool retry = PETSC_TRUE;
+  PetscFunctionBeginUser;
+  what[0] = 0;
+  for (PetscInt k = 0; retry && k < 4; ++k) {
+    PetscCall(KSPSolve(ksp, b, x));
+    PetscCall(KSPGetConvergedReason(ksp, reason));
+    retry = PETSC_FALSE;
+    if (*reason == KSP_DIVERGED_PC_FAILED) PetscCall(DirectFailure(ksp, *reason, what, len, &retry));
+  }
+  if (*reason > 0) what[0] = 0;
+  else if (!what[0]) PetscCall(PetscSNPrintf(what, len, "the direct solve failed (%s)", KSPConvergedReasons[*reason]));
+  PetscFunctionReturn(0);
+}
+
 PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, PetscInt *its)
 {
   PetscInt  maxit, its1 = 0;
@@ -781,23 +797,15 @@ PetscErrorCode SlumpProblemKSPSolve(SlumpProblem prob, KSP ksp, Vec b, Vec x, KS
   if (prob->linIterative) PetscCall(FreshVelocityPC(prob, ksp));
   if (can && prob->linEscalated == 2) PetscCall(Escalate(prob, ksp, &done)); /* a KSP not yet switched */
   if (!prob->linIterative) {
-    PetscBool retry = PETSC_TRUE;
-    for (PetscInt k = 0; retry && k < 4; ++k) {
-      PetscCall(Solve(ksp, b, x, reason, its));
-      retry = PETSC_FALSE;
-      if (*reason == KSP_DIVERGED_PC_FAILED) {
-        prob->linFail.direct = PETSC_TRUE;
-        PetscCall(SlumpKSPDirectFailure(ksp, *reason, prob->linFail.what, sizeof(prob->linFail.what), &retry));
-      }
-    }
+    char what[sizeof(prob->linFail.what)];
+    PetscCall(SlumpKSPSolveDirect(ksp, b, x, reason, what, sizeof(what)));
+    PetscCall(KSPGetIterationNumber(ksp, its));
     if (*reason <= 0) {
       prob->linFail.n++;
       prob->linFail.its    = *its;
       prob->linFail.reason = *reason;
-      if (*reason != KSP_DIVERGED_PC_FAILED) {
-        prob->linFail.direct = PETSC_TRUE;
-        PetscCall(PetscSNPrintf(prob->linFail.what, sizeof(prob->linFail.what), "the direct solve failed (%s)", KSPConvergedReasons[*reason]));
-      }
+      prob->linFail.direct = PETSC_TRUE;
+      PetscCall(PetscStrncpy(prob->linFail.what, what, sizeof(prob->linFail.what)));
     }
     PetscFunctionReturn(0);
   }

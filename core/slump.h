@@ -442,11 +442,12 @@ typedef struct {
   char               what[320];
 } SlumpLinearFailures;
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearFailures(SlumpProblem prob, SlumpLinearFailures *f);
-/* A direct solve of ksp (LU) that ended with KSP_DIVERGED_PC_FAILED: a MUMPS
-   factorisation that stopped on its workspace is prepared again with the
-   relaxation changed, where it is SlumpKSPSetDirect's default (retry: solve
-   again; one line says so); what: why it failed, the end of a sentence. */
-PETSC_EXTERN PetscErrorCode SlumpKSPDirectFailure(KSP ksp, KSPConvergedReason reason, char what[], size_t len, PetscBool *retry);
+/* KSPSolve of a direct ksp (LU; SlumpKSPSetDirect): a MUMPS factorisation
+   that stops on its workspace is done again, up to 3 times, with the
+   relaxation -mat_mumps_icntl_14 lowered (allocation failed) or raised
+   (workspace too small), where it is SlumpKSPSetDirect's default; one line
+   says so. what: empty, or why the solve failed, the end of a sentence. */
+PETSC_EXTERN PetscErrorCode SlumpKSPSolveDirect(KSP ksp, Vec b, Vec x, KSPConvergedReason *reason, char what[], size_t len);
 /* true with -linear_solver iterative and -linear_forcing eisenstat_walker */
 PETSC_EXTERN PetscErrorCode SlumpProblemGetLinearForcing(SlumpProblem prob, PetscBool *ew);
 

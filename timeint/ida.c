@@ -50,31 +50,24 @@ static int IdaRoot(realtype t, N_Vector yy, N_Vector yp, realtype *gout, void *u
 static PetscErrorCode InitSolve(KSP ksp, Vec F, Vec W)
 {
   KSPConvergedReason reason;
-  PetscBool          direct, retry = PETSC_TRUE;
-  MPI_Comm           comm     = PetscObjectComm((PetscObject)ksp);
+  PetscBool          direct;
+  MPI_Comm           comm      = PetscObjectComm((PetscObject)ksp);
   char               what[320] = "";
   PetscFunctionBeginUser;
-  PetscCall(KSPSolve(ksp, F, W));
-  PetscCall(KSPGetConvergedReason(ksp, &reason));
   PetscCall(PetscObjectTypeCompare((PetscObject)ksp, KSPPREONLY, &direct));
-  if (reason < 0 && !direct) {
-    PetscInt its;
-    PetscCall(KSPGetIterationNumber(ksp, &its));
-    PetscCall(PetscPrintf(comm, "consistent initialisation: the Krylov solve stopped (%s after %" PetscInt_FMT " iterations); solved by LU (MUMPS) instead\n", KSPConvergedReasons[reason], its));
-    PetscCall(SlumpKSPSetDirect(ksp));
+  if (direct) PetscCall(SlumpKSPSolveDirect(ksp, F, W, &reason, what, sizeof(what)));
+  else {
     PetscCall(KSPSolve(ksp, F, W));
     PetscCall(KSPGetConvergedReason(ksp, &reason));
-  }
-  /* an LU that stopped on its workspace: again with the relaxation changed */
-  for (PetscInt k = 0; reason == KSP_DIVERGED_PC_FAILED && retry && k < 4; ++k) {
-    PetscCall(SlumpKSPDirectFailure(ksp, reason, what, sizeof(what), &retry));
-    if (retry) {
-      PetscCall(KSPSolve(ksp, F, W));
-      PetscCall(KSPGetConvergedReason(ksp, &reason));
+    if (reason < 0) {
+      PetscInt its;
+      PetscCall(KSPGetIterationNumber(ksp, &its));
+      PetscCall(PetscPrintf(comm, "consistent initialisation: the Krylov solve stopped (%s after %" PetscInt_FMT " iterations); solved by LU (MUMPS) instead\n", KSPConvergedReasons[reason], its));
+      PetscCall(SlumpKSPSetDirect(ksp));
+      PetscCall(SlumpKSPSolveDirect(ksp, F, W, &reason, what, sizeof(what)));
     }
   }
-  PetscCheck(reason > 0 || !what[0], comm, PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed because %s", what);
-  PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed (KSP reason %s)", KSPConvergedReasons[reason]);
+  PetscCheck(reason > 0, comm, PETSC_ERR_NOT_CONVERGED, "The consistent-initialisation solve failed because %s", what);
   PetscFunctionReturn(0);
 }
 
