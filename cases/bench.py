@@ -7,6 +7,7 @@ and the linear solves (PCSetUp = LU factorisation, KSPSolve), from -log_view.
 usage: python3 cases/bench.py [--slump build/slump] [--out docs/performance.md] [--quick]
        python3 cases/bench.py --linear [--max-unknowns 1.1e6] [--out table.md]
        python3 cases/bench.py --scaling 1,2[,4,...] [--solver iterative|direct] [--out table.md]
+       python3 cases/bench.py --operator [--max-unknowns 5e6] [--out table.md]
 
 --linear: LU (MUMPS) against -linear_solver iterative on poiseuille (steady
 Bingham, Stokes), cavity (steady Bingham lid-driven, Stokes) and
@@ -29,6 +30,17 @@ sqrt(r) in each direction (about r times the unknowns), efficiency the
 1-rank time per Newton iteration over the r-rank one, and the same per
 Krylov iteration (which leaves out the growth of the Krylov count). Ranks beyond the
 machine's cores run oversubscribed: correct, but not a measure of speed.
+
+--operator: what the node itself does to the cost per unknown. Newtonian
+Poiseuille (-rheology_yield_stress 0: one linear solve whose Krylov count
+the regularisation does not drive) with -linear_solver iterative from
+8 x 32 up to --max-unknowns: Krylov iterations, time per Krylov iteration,
+one application of the velocity block's V-cycle per velocity unknown, the
+preconditioner's set-up, one Jacobian assembly, and the flop rate of
+VecMAXPY (GMRES's update of the solution, a streaming kernel whose work is
+exactly proportional to the unknowns), with the exponents of those times
+against the unknowns over all runs with at least 1e4 unknowns and over
+those with at least 5e5.
 """
 import math
 import argparse
@@ -43,15 +55,16 @@ EVENTS_LIN = ("PCSetUp", "KSPSolve")  # PCSetUp (LU factorisation) runs inside o
 
 
 def logview_times(text):
+    """Event name -> (count, seconds, flops) of the first -log_view table."""
     t = {}
     for line in text.splitlines():
-        m = re.match(r"^(\w+)\s+(\d+)\s+[\d.]+\s+([\d.e+-]+)\s", line)
+        m = re.match(r"^(\w+)\s+(\d+)\s+[\d.]+\s+([\d.e+-]+)\s+[\d.]+\s+([\d.e+-]+)\s", line)
         if m and m.group(1) not in t:
-            t[m.group(1)] = (int(m.group(2)), float(m.group(3)))
+            t[m.group(1)] = (int(m.group(2)), float(m.group(3)), float(m.group(4)))
     return t
 
 
-def run(slump, scene, opts, ranks=1, mpiexec="mpiexec"):
+def run(slump, scene, opts, ranks=1, mpiexec="mpiexec", events=False):
     with tempfile.TemporaryDirectory() as d:
         cmd = [slump, "-scene", scene, "-output_dir", d, "-quiet", "-output_fields", "0", "-log_view"] + opts
         if ranks > 1:
@@ -65,6 +78,8 @@ def run(slump, scene, opts, ranks=1, mpiexec="mpiexec"):
     asm = sum(ev.get(e, (0, 0.0))[1] for e in EVENTS_ASM)
     lin = sum(ev.get(e, (0, 0.0))[1] for e in EVENTS_LIN)
     petsc_asm = sum(ev.get(e, (0, 0.0))[1] for e in ("DMPlexResidualFE", "DMPlexJacobianFE"))
+    if events:
+        return s, ev
     return s, asm + petsc_asm, lin
 
 
@@ -210,6 +225,42 @@ def scaling_bench(a):
             f.write("\n".join(lines) + "\n")
 
 
+def operator_bench(a):
+    head = "| mesh | unknowns | Krylov | KSPSolve s | ms per Krylov iteration | V-cycle µs per velocity unknown | PC set-up s | Jacobian s | VecMAXPY Gflop/s | wall s | peak MB |"
+    lines = [head, "|" + "---|" * 11]
+    print("\n".join(lines), flush=True)
+    pts = []
+    for nx in (8, 16, 32, 64, 128, 168, 256, 362, 512):
+        n = 36 * nx * nx  # about 9 nx ny unknowns with ny = 4 nx
+        if n > (1.6e5 if a.quick else a.max_unknowns):
+            break
+        s, ev = run(a.slump, "poiseuille", ["-mesh_nx", str(nx), "-mesh_ny", str(4 * nx), "-rheology_yield_stress", "0", "-linear_solver", "iterative"], events=True)
+        n = int(s["unknowns"])
+        nvel = n - (nx + 1) * (4 * nx + 1)  # P1 pressure on every vertex, the rest velocity
+        its = max(int(s["lin_its"]), 1)
+        ksp = ev["KSPSolve"][1]
+        vc = ev["KSPSolve_FS_0"]  # one application of the velocity block (one V-cycle)
+        jac = ev["SlumpJacobian"]
+        axpy = ev["VecMAXPY"]
+        p = dict(n=n, per_it=ksp / its, vcycle=vc[1] / vc[0], setup=ev["PCSetUp"][1], jac=jac[1] / jac[0], axpy=axpy[1] / axpy[2])
+        pts.append(p)
+        lines.append("| %d x %d | %d | %d | %.3f | %.3f | %.3f | %.3f | %.3f | %.2f | %.1f | %.0f |" % (nx, 4 * nx, n, its, ksp, 1e3 * p["per_it"], 1e6 * p["vcycle"] / nvel, p["setup"], p["jac"], 1e-9 / p["axpy"], float(s["wall_time"]), float(s["peak_memory_mb"])))
+        print(lines[-1], flush=True)
+    # the exponent of the time against the unknowns; for VecMAXPY, 1 + that of
+    # its time per flop
+    lines += ["", "| unknowns | runs | per Krylov iteration | V-cycle | PC set-up | Jacobian | VecMAXPY |", "|---|---|---|---|---|---|---|"]
+    for lo, label in ((1e4, "1e4"), (5e5, "5e5")):
+        sel = [p for p in pts if p["n"] >= lo]
+        if len(sel) < 2:
+            continue
+        fit = lambda k: fit_exponent([(p["n"], p[k]) for p in sel])
+        lines.append("| ≥ %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f |" % (label, len(sel), fit("per_it"), fit("vcycle"), fit("setup"), fit("jac"), 1.0 + fit("axpy")))
+    print("\n".join(lines[lines.index("") :]))
+    if a.out:
+        with open(a.out, "w") as f:
+            f.write("\n".join(lines) + "\n")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--slump", default="build/slump")
@@ -222,7 +273,11 @@ def main():
     ap.add_argument("--mpiexec", default="mpiexec")
     ap.add_argument("--scaling", default=None, metavar="RANKS", help="strong and weak scaling on these rank counts, e.g. 1,2")
     ap.add_argument("--solver", default="iterative", choices=("iterative", "direct"), help="-linear_solver of the --scaling runs")
+    ap.add_argument("--operator", action="store_true", help="the Newtonian Stokes operator's cost per unknown against the node's, up to --max-unknowns")
     a = ap.parse_args()
+    if a.operator:
+        operator_bench(a)
+        return
     if a.scaling:
         scaling_bench(a)
         return
