@@ -64,7 +64,8 @@ def logview_times(text):
     return t
 
 
-def run(slump, scene, opts, ranks=1, mpiexec="mpiexec", events=False):
+def run_events(slump, scene, opts, ranks=1, mpiexec="mpiexec"):
+    """One run: its summary.csv row and its -log_view events."""
     with tempfile.TemporaryDirectory() as d:
         cmd = [slump, "-scene", scene, "-output_dir", d, "-quiet", "-output_fields", "0", "-log_view"] + opts
         if ranks > 1:
@@ -74,13 +75,22 @@ def run(slump, scene, opts, ranks=1, mpiexec="mpiexec", events=False):
         p = subprocess.run(cmd, capture_output=True, text=True, check=True)
         with open(os.path.join(d, "summary.csv")) as f:
             s = next(csv.DictReader(f))
-    ev = logview_times(p.stdout)
+    return s, logview_times(p.stdout)
+
+
+def run(slump, scene, opts, ranks=1, mpiexec="mpiexec"):
+    """One run: its summary.csv row, assembly seconds, linear-solve seconds."""
+    s, ev = run_events(slump, scene, opts, ranks, mpiexec)
     asm = sum(ev.get(e, (0, 0.0))[1] for e in EVENTS_ASM)
     lin = sum(ev.get(e, (0, 0.0))[1] for e in EVENTS_LIN)
     petsc_asm = sum(ev.get(e, (0, 0.0))[1] for e in ("DMPlexResidualFE", "DMPlexJacobianFE"))
-    if events:
-        return s, ev
     return s, asm + petsc_asm, lin
+
+
+def write_table(path, lines):
+    if path:
+        with open(path, "w") as f:
+            f.write("\n".join(lines) + "\n")
 
 
 def fit_exponent(points):
@@ -153,9 +163,7 @@ def linear_bench(a):
             lines.append("| %s | %s | %d | %.1f | %.2f |" % (m, pre, int(s["newton_its"]), float(s["lin_its"]) / max(float(s["newton_its"]), 1.0), float(s["wall_time"])))
             print(lines[-1], flush=True)
     print("\n".join(lines[lines.index("") :]))
-    if a.out:
-        with open(a.out, "w") as f:
-            f.write("\n".join(lines) + "\n")
+    write_table(a.out, lines)
 
 
 SCALING_CASES = (
@@ -220,9 +228,7 @@ def scaling_bench(a):
                         eff += " (%.2f per Krylov)" % ((float(ref["wall_time"]) / int(ref["lin_its"])) / (wall / int(s["lin_its"])))
                 lines.append("| %s | %d x %d | %s | %d | %s | %d | %s | %.2f | %.4f | %s | %s | %s | %.0f |" % (scene, mx, my, s["unknowns"], r, kind if r > 1 else "", newton, s["lin_its"], wall, wall / newton, speed, eff, diff, float(s["peak_memory_mb"])))
                 print(lines[-1], flush=True)
-    if a.out:
-        with open(a.out, "w") as f:
-            f.write("\n".join(lines) + "\n")
+    write_table(a.out, lines)
 
 
 def operator_bench(a):
@@ -234,7 +240,7 @@ def operator_bench(a):
         n = 36 * nx * nx  # about 9 nx ny unknowns with ny = 4 nx
         if n > (1.6e5 if a.quick else a.max_unknowns):
             break
-        s, ev = run(a.slump, "poiseuille", ["-mesh_nx", str(nx), "-mesh_ny", str(4 * nx), "-rheology_yield_stress", "0", "-linear_solver", "iterative"], events=True)
+        s, ev = run_events(a.slump, "poiseuille", ["-mesh_nx", str(nx), "-mesh_ny", str(4 * nx), "-rheology_yield_stress", "0", "-linear_solver", "iterative"])
         n = int(s["unknowns"])
         nvel = n - (nx + 1) * (4 * nx + 1)  # P1 pressure on every vertex, the rest velocity
         its = max(int(s["lin_its"]), 1)
@@ -256,9 +262,7 @@ def operator_bench(a):
         fit = lambda k: fit_exponent([(p["n"], p[k]) for p in sel])
         lines.append("| ≥ %s | %d | %.2f | %.2f | %.2f | %.2f | %.2f |" % (label, len(sel), fit("per_it"), fit("vcycle"), fit("setup"), fit("jac"), 1.0 + fit("axpy")))
     print("\n".join(lines[lines.index("") :]))
-    if a.out:
-        with open(a.out, "w") as f:
-            f.write("\n".join(lines) + "\n")
+    write_table(a.out, lines)
 
 
 def main():
