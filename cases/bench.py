@@ -110,7 +110,7 @@ def linear_cases(max_n, max_lu):
     for ny in (32, 64, 128, 256, 512, 672):
         n = 9 * (ny // 4) * ny
         out.append(("poiseuille", "%d x %d" % (ny // 4, ny), n, ["-mesh_nx", str(ny // 4), "-mesh_ny", str(ny), "-rheology_papanastasiou_m", "1e4", "-steady_continuation_start", "1e2"]))
-    for nc in (16, 32, 64, 128):
+    for nc in (16, 32, 64, 128, 256, 340):
         out.append(("cavity", "%d x %d" % (nc, nc), 9 * nc * nc, ["-mesh_nx", str(nc), "-mesh_ny", str(nc)]))
     for nd in (16, 32, 64, 128, 256, 512):
         out.append(("duct_cessation", "%d x %d" % (nd, nd), (2 * nd + 1) ** 2, ["-mesh_nx", str(nd), "-mesh_ny", str(nd), "-time_final", "0.005"]))
