@@ -1297,6 +1297,63 @@ def test_stability_quasistatic_ic_stiff():
             fail("the potential energy at t = 0 changed with m (%s): the level set moved" % m)
 
 
+def test_stability_steady_retry():
+    """A steady Newton solve that fails is retried from softer regularisation
+    values (timeint/kinsol.c, SteadySolve). Steady Bingham Poiseuille (16 x 16
+    cells) from rest: (1) Papanastasiou m = 1e6 fails there (50 Newton steps,
+    max|F| 2.6e-3), is retried from m = 1e4 and converges, with one
+    convergence failure counted, to the solution of the explicit continuation
+    from m = 1e2 (flow rate, kinetic energy, mean shear rate, velocity error:
+    equal to 1e-8 relative); (2) the same for a model stiffer as its parameter
+    falls (bingham_simple, eps = 1e-6: retried from 1e-4); (3) a continuation
+    step that fails (1e2 to 1e6 with -steady_continuation_factor 1e4) is
+    retried from the last value solved with the square root of the step
+    (1e2 to 1e4); (4) with -steady_continuation_retry 0 the run stops with
+    one error sentence naming the remedy, a non-zero exit and status
+    not_converged; (5) a target out of reach (Bercovier eps = 1e-8) ends in
+    one sentence naming the stiffest value solved, between the target and
+    the first retry's 1e-6."""
+    w = work("steady_retry")
+    keys = ("flow_rate", "kinetic_energy", "mean_shear_rate", "err_u_l2")
+    m6 = ["-rheology_papanastasiou_m", "1e6"]
+    simple = ["-rheology_type", "bingham_simple", "-rheology_simple_eps", "1e-6"]
+    # (name, options, the explicit continuation's options, expected output)
+    cases = (("m1e6", m6, m6 + ["-steady_continuation_start", "1e2"], ["retrying from m = 10000"]),
+             ("simple_eps1e-6", simple, simple + ["-steady_continuation_start", "1e-2"], ["retrying from eps = 0.0001"]),
+             ("factor1e4", m6 + ["-steady_continuation_start", "1e2", "-steady_continuation_factor", "1e4"], m6 + ["-steady_continuation_start", "1e2"], ["steady: m = 100 ", "retrying from m = 10000"]))
+    for name, opts, ref_opts, want in cases:
+        d, dr = os.path.join(w, name), os.path.join(w, name + "_ref")
+        base = ["-output_fields", "0"]
+        p = subprocess.run([ARGS.slump, "-scene", "poiseuille", "-output_dir", d] + base + opts, capture_output=True, text=True)
+        if p.returncode != 0:
+            fail("%s: the retried solve failed (%d):\n%s%s" % (name, p.returncode, p.stdout[-2000:], p.stderr[-2000:]))
+        run("poiseuille", base + ref_opts, dr)
+        s, r = summary(d), summary(dr)
+        print("%-15s retries %d, Newton %d (reference %d), conv_fails %d; %s" % (name, p.stdout.count("retrying from"), s["newton_its"], r["newton_its"], s["conv_fails"],
+              ", ".join("%s %.10e (ref %.10e)" % (k, s[k], r[k]) for k in keys)))
+        for t in want:
+            if t not in p.stdout:
+                fail("%s: expected %r in the output:\n%s" % (name, t, p.stdout))
+        if p.stdout.count("retrying from") != 1 or s["conv_fails"] != 1 or "reached after 1 retry from softer values" not in p.stdout:
+            fail("%s: expected exactly one retry and one convergence failure, got %d and %d" % (name, p.stdout.count("retrying from"), s["conv_fails"]))
+        for k in keys:
+            if abs(s[k] - r[k]) > 1e-8 * abs(r[k]):
+                fail("%s: %s %.12e differs from the explicit continuation's %.12e by more than 1e-8 relative" % (name, k, s[k], r[k]))
+    for name, opts, want in (("no_retry", ["-rheology_papanastasiou_m", "1e6", "-steady_continuation_retry", "0"], r"The steady Newton solve did not converge at m = 1e\+06; try -steady_continuation_start"),
+                             ("out_of_reach", ["-rheology_type", "bercovier", "-rheology_bercovier_eps", "1e-8"], r"The steady Newton solve did not reach eps = 1e-08: after \d+ retries from softer values the stiffest value solved is eps = ([0-9.e+-]+); try -newton_max_it")):
+        d = os.path.join(w, name)
+        p = subprocess.run([ARGS.slump, "-scene", "poiseuille", "-output_fields", "0", "-quiet", "-output_dir", d] + opts, capture_output=True, text=True)
+        err = [l for l in p.stderr.splitlines() if l.strip()]
+        m = re.search(want, err[0]) if len(err) == 1 else None
+        print("%s: exit %d: %s" % (name, p.returncode, err[0] if err else "(no message)"))
+        if p.returncode <= 0 or p.returncode > 128 or "PETSC ERROR" in p.stderr or not m:
+            fail("%s: expected one sentence matching %r and a non-zero exit, got exit %d:\n%s" % (name, want, p.returncode, p.stderr))
+        if summary(d)["status"] != "not_converged":
+            fail("%s: expected status not_converged in summary.csv, got %r" % (name, summary(d)["status"]))
+        if name == "out_of_reach" and not 1e-8 < float(m.group(1)) <= 1e-6:
+            fail("out_of_reach: the stiffest value solved, %s, is not within (1e-8, 1e-6]" % m.group(1))
+
+
 # Cessation scenes for the stability sweep: Bn as each scene defines it
 # (Poiseuille and duct start from the Newtonian flow so that any Bn moves).
 SWEEP_SCENES = [

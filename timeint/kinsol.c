@@ -251,7 +251,7 @@ PetscErrorCode SlumpLinearisationSetUp(SlumpProblem prob, MPI_Comm comm, PetscBo
 typedef struct {
   PetscReal start, factor;
   PetscInt  nrho;
-  PetscBool set, monitor;
+  PetscBool set, monitor, adaptive;
 } SteadyOptions;
 
 static PetscErrorCode SteadyReadOptions(SlumpProblem prob, MPI_Comm comm, SteadyOptions *o)
@@ -266,12 +266,14 @@ static PetscErrorCode SteadyReadOptions(SlumpProblem prob, MPI_Comm comm, Steady
   o->factor  = 10.0;
   o->nrho    = 1;
   o->monitor = PETSC_FALSE;
+  o->adaptive = PETSC_TRUE;
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &larger_stiffer));
   PetscOptionsBegin(comm, NULL, "Steady solve", "SlumpSteadySolve");
   PetscCall(PetscOptionsReal("-steady_continuation_start", "First value of the regularisation parameter (continuation towards the model's value)", "", o->start, &o->start, &o->set));
   PetscCall(PetscOptionsBool("-newton_monitor", "Print max|F| at every Newton iterate", "", o->monitor, &o->monitor, NULL));
   PetscCall(PetscOptionsReal("-steady_continuation_factor", "Factor between continuation steps (> 1)", "", o->factor, &o->factor, NULL));
+  PetscCall(PetscOptionsBool("-steady_continuation_retry", "Retry a failed Newton solve from softer regularisation values (continuation with smaller factors)", "", o->adaptive, &o->adaptive, NULL));
   PetscCall(PetscOptionsInt("-steady_inertia_steps", "Continuation in the Reynolds number: solve at the densities rho k/n, k = 1 ... n, at the first regularisation value (1: none)", "", o->nrho, &o->nrho, NULL));
   PetscOptionsEnd();
   PetscCheck(o->factor > 1.0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_factor must be > 1; got %g", (double)o->factor);
@@ -295,15 +297,31 @@ PetscErrorCode SlumpSteadyCheckOptions(SlumpProblem prob)
   PetscFunctionReturn(0);
 }
 
-PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
+/* The value f times stiffer than v (f < 1: softer), for a model stiffer as
+   its parameter grows (Papanastasiou m) or as it falls (Bercovier eps) */
+static PetscReal Stiffer(PetscReal v, PetscReal f, PetscBool larger_stiffer)
+{
+  return larger_stiffer ? v * f : v / f;
+}
+
+/* The steady solve, with continuation in the regularisation as the options
+   ask. retry: a Newton solve that fails (not for a Krylov solve's sake) is
+   retried from softer values, as IDACalcIC is (ida.c): before anything has
+   converged, from 100 and then 1e4 times softer than the first value tried;
+   after, from the stiffest value solved (X holds its solution) with the
+   square root of the step that failed, which grows back (squared, up to
+   -steady_continuation_factor) after each success; at most 10 retries. The Bingham cavity on
+   256 x 256 cells fails at m = 1e4 from rest (50 Newton steps, max|F| 1.34)
+   and converges from m = 1e2 (docs/performance.md). */
+static PetscErrorCode SteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats, PetscBool retry)
 {
   SlumpImplicitSolver s;
   SlumpRheology       rheo;
   SteadyOptions       o;
   const char         *regname;
-  PetscReal           target, v, rho;
-  PetscInt            kr, effects;
-  PetscBool           larger_stiffer;
+  PetscReal           target, v, rho, f, first, reached = 0.0;
+  PetscInt            kr, effects, nsoft = 0, nretry = 0;
+  PetscBool           larger_stiffer, cont;
   MPI_Comm            comm;
   PetscFunctionBeginUser;
   PetscCall(PetscObjectGetComm((PetscObject)X, &comm));
@@ -317,14 +335,18 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
     PetscCall(SlumpLinearisationSetUp(prob, comm, &sv));
   }
   PetscCall(SlumpImplicitSolverCreate(prob, X, &s));
-  v  = o.set ? o.start : target;
+  retry = (PetscBool)(retry && o.adaptive && regname);
+  cont  = o.set;
+  v = first = o.set ? o.start : target;
+  f  = o.factor;
   kr = 1;
   for (;;) {
-    PetscBool conv, last;
-    PetscInt  nits, lits;
-    Vec       F;
-    PetscReal fn;
-    if (o.set) {
+    PetscBool           conv, last;
+    PetscInt            nits, lits;
+    Vec                 F;
+    PetscReal           fn;
+    SlumpLinearFailures lf;
+    if (cont) {
       last = larger_stiffer ? (v >= target * (1 - 1e-12)) : (v <= target * (1 + 1e-12));
       if (last) v = target;
       PetscCall(SlumpProblemSetRheologyParameter(prob, regname, v));
@@ -350,13 +372,32 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
     if (o.nrho > 1 && kr <= o.nrho) PetscCall(PetscPrintf(comm, "steady: density %-10.4g (%" PetscInt_FMT " of %" PetscInt_FMT ")\n", (double)(rho * kr / o.nrho), kr, o.nrho));
     if (regname) PetscCall(PetscPrintf(comm, "steady: %s = %-10.4g Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", regname, (double)v, nits, lits, (double)fn, conv ? "" : "  (not converged)"));
     else PetscCall(PetscPrintf(comm, "steady: Newton %3" PetscInt_FMT "  linear %4" PetscInt_FMT "  max|F| %.3e%s\n", nits, lits, (double)fn, conv ? "" : "  (not converged)"));
+    PetscCall(SlumpImplicitSolverGetLinearFailures(s, &lf));
+    /* a retry from softer values, after the density ramp; X holds the last
+       converged state (the initial guess if none) */
+    if (!conv && retry && !lf.n && (o.nrho == 1 || kr > o.nrho)) {
+      PetscReal vn = 0.0;
+      if (reached == 0.0) {
+        if (nsoft < 2) vn = Stiffer(first, PetscPowReal(100.0, -(PetscReal)++nsoft), larger_stiffer);
+      } else if (nretry < 10) {
+        /* the square root of the step that failed (the last step to the
+           target may have been shorter than f) */
+        f = PetscSqrtReal(larger_stiffer ? v / reached : reached / v);
+        if (f >= 1.05) vn = Stiffer(reached, f, larger_stiffer);
+      }
+      if (vn > 0.0) {
+        PetscCall(PetscPrintf(comm, "steady: no convergence at %s = %.6g; retrying from %s = %.6g\n", regname, (double)v, regname, (double)vn));
+        ++nretry;
+        v    = vn;
+        cont = PETSC_TRUE;
+        continue;
+      }
+    }
     if (!conv) {
-      SlumpLinearFailures lf;
       /* leave the model's own value in place: a caller that retries (a load
          continuation) would otherwise go on at this intermediate one */
-      if (o.set) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, target));
+      if (cont) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, target));
       if (o.nrho > 1) PetscCall(SlumpProblemSetDensity(prob, rho));
-      PetscCall(SlumpImplicitSolverGetLinearFailures(s, &lf));
       PetscCall(SlumpImplicitSolverDestroy(&s));
       /* the Newton iteration stopped because a Krylov solve did: say so (the
          steady Poiseuille at m = 1e6 with -linear_solver iterative) */
@@ -369,9 +410,12 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
         SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge%s because a Krylov solve of -linear_solver iterative did not (%s after %" PetscInt_FMT " iterations); use -linear_solver direct%s (see docs/performance.md)", at, KSPConvergedReasons[lf.reason], lf.its,
                 form == SLUMP_FORMULATION_PLANE ? ", or an inner Krylov solve of the velocity block (-fieldsplit_u_ksp_type gmres -fieldsplit_u_ksp_rtol 1e-2)" : "");
       }
+      PetscCheck(!nretry || reached > 0.0, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge at %s = %g, nor from 1e4 times softer; try -newton_max_it or a better initial state", regname, (double)first);
+      PetscCheck(!nretry, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not reach %s = %g: after %" PetscInt_FMT " retries from softer values the stiffest value solved is %s = %g; try -newton_max_it or a softer regularisation", regname, (double)target, nretry, regname, (double)reached);
     }
     PetscCheck(conv || !regname, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge at %s = %g; try -steady_continuation_start, -newton_max_it or a softer regularisation", regname, (double)v);
     PetscCheck(conv, comm, PETSC_ERR_NOT_CONVERGED, "The steady Newton solve did not converge; try -newton_max_it or a better initial state%s", effects & SLUMP_EFFECT_CONVECTION ? ", or a continuation in the Reynolds number (-steady_inertia_steps)" : "");
+    if (regname) reached = v;
     /* the density ramp, at the first regularisation value */
     if (kr < o.nrho) {
       ++kr;
@@ -379,10 +423,26 @@ PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
     }
     kr = o.nrho + 1;
     if (last) break;
-    v = larger_stiffer ? v * o.factor : v / o.factor;
+    if (nretry) f = PetscMin(f * f, o.factor);
+    v = Stiffer(v, f, larger_stiffer);
   }
+  if (nretry) PetscCall(PetscPrintf(comm, "steady: %s = %.6g reached after %" PetscInt_FMT " retr%s from softer values\n", regname, (double)target, nretry, nretry > 1 ? "ies" : "y"));
   PetscCall(SlumpImplicitSolverGetStats(s, stats));
   PetscCall(SlumpProblemGetCounters(prob, &stats->res_evals, &stats->jac_evals));
   PetscCall(SlumpImplicitSolverDestroy(&s));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SteadySolve(prob, X, stats, PETSC_TRUE));
+  PetscFunctionReturn(0);
+}
+
+PetscErrorCode SlumpSteadySolveNoRetry(SlumpProblem prob, Vec X, SlumpStats *stats)
+{
+  PetscFunctionBeginUser;
+  PetscCall(SteadySolve(prob, X, stats, PETSC_FALSE));
   PetscFunctionReturn(0);
 }

@@ -109,8 +109,12 @@ PETSC_EXTERN PetscErrorCode SlumpIntegratorGetLastStep(SlumpIntegrator ti, Petsc
 
 /* Steady state F(y, 0) = 0 by KINSOL (line search), with continuation in the
    regularisation parameter: -steady_continuation_start v -steady_continuation_factor f
-   go from v to the model's value in geometric steps. X: initial guess and result. */
+   go from v to the model's value in geometric steps. X: initial guess and result.
+   A failed Newton solve is retried from softer values (smaller steps after a
+   failure; -steady_continuation_retry 0: not). NoRetry: never, for callers
+   with a continuation of their own (a load ramp). */
 PETSC_EXTERN PetscErrorCode SlumpSteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats);
+PETSC_EXTERN PetscErrorCode SlumpSteadySolveNoRetry(SlumpProblem prob, Vec X, SlumpStats *stats);
 /* the -steady_* options read and checked, before anything is written */
 PETSC_EXTERN PetscErrorCode SlumpSteadyCheckOptions(SlumpProblem prob);
 

@@ -300,7 +300,7 @@ static PetscErrorCode GranularCylinderInitial(SlumpScene scene, SlumpProblem pro
     PetscCall(PetscPrintf(comm, "load continuation: F = %.6g\n", (double)F));
     PetscCall(SlumpProblemSetBodyForce(prob, -F * c->p / c->D, 0.0));
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    ierr = SlumpSteadySolve(prob, X, &st);
+    ierr = SlumpSteadySolveNoRetry(prob, X, &st);
     PetscCall(PetscPopErrorHandler());
     ++nsolve;
     if (ierr == PETSC_ERR_NOT_CONVERGED) {
@@ -331,7 +331,7 @@ static PetscErrorCode GranularCylinderInitial(SlumpScene scene, SlumpProblem pro
     PetscCall(PetscPrintf(comm, "regularisation continuation: %s = %.6g\n", regname, (double)v));
     PetscCall(SlumpProblemSetRheologyParameter(prob, regname, v));
     PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-    ierr = SlumpSteadySolve(prob, X, &st);
+    ierr = SlumpSteadySolveNoRetry(prob, X, &st);
     PetscCall(PetscPopErrorHandler());
     if (ierr == PETSC_ERR_NOT_CONVERGED) PetscCall(SlumpProblemSetRheologyParameter(prob, regname, target));
     PetscCheck(ierr != PETSC_ERR_NOT_CONVERGED, comm, PETSC_ERR_NOT_CONVERGED, "The continuation of granular_cylinder in %s from %g down to the model's %g failed at %g (load F = %g); try a larger %s for the model", regname, (double)c->lr_load, (double)target, (double)v, (double)c->F, regname);
