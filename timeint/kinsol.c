@@ -304,6 +304,19 @@ static PetscReal Stiffer(PetscReal v, PetscReal f, PetscBool larger_stiffer)
   return larger_stiffer ? v * f : v / f;
 }
 
+/* The value to retry from after a failed solve at v (0: none left).
+   Nothing solved yet (reached 0): 100, then 1e4 times softer than the first
+   value tried (*nsoft counts them). Else, from the stiffest value solved, the
+   square root of the step that failed (*f; the last step to the target may
+   have been shorter than the factor); at most 10 retries. */
+static PetscReal RetryValue(PetscReal first, PetscReal reached, PetscReal v, PetscBool larger_stiffer, PetscInt nretry, PetscInt *nsoft, PetscReal *f)
+{
+  if (reached == 0.0) return *nsoft < 2 ? Stiffer(first, PetscPowReal(100.0, -(PetscReal)++*nsoft), larger_stiffer) : 0.0;
+  if (nretry >= 10) return 0.0;
+  *f = PetscSqrtReal(larger_stiffer ? v / reached : reached / v);
+  return *f >= 1.05 ? Stiffer(reached, *f, larger_stiffer) : 0.0;
+}
+
 /* The steady solve, with continuation in the regularisation as the options
    ask. retry: a Newton solve that fails (not for a Krylov solve's sake) is
    retried from softer values, as IDACalcIC is (ida.c): before anything has
@@ -376,15 +389,7 @@ static PetscErrorCode SteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats, P
     /* a retry from softer values, after the density ramp; X holds the last
        converged state (the initial guess if none) */
     if (!conv && retry && !lf.n && (o.nrho == 1 || kr > o.nrho)) {
-      PetscReal vn = 0.0;
-      if (reached == 0.0) {
-        if (nsoft < 2) vn = Stiffer(first, PetscPowReal(100.0, -(PetscReal)++nsoft), larger_stiffer);
-      } else if (nretry < 10) {
-        /* the square root of the step that failed (the last step to the
-           target may have been shorter than f) */
-        f = PetscSqrtReal(larger_stiffer ? v / reached : reached / v);
-        if (f >= 1.05) vn = Stiffer(reached, f, larger_stiffer);
-      }
+      const PetscReal vn = RetryValue(first, reached, v, larger_stiffer, nretry, &nsoft, &f);
       if (vn > 0.0) {
         PetscCall(PetscPrintf(comm, "steady: no convergence at %s = %.6g; retrying from %s = %.6g\n", regname, (double)v, regname, (double)vn));
         ++nretry;
