@@ -251,7 +251,7 @@ PetscErrorCode SlumpLinearisationSetUp(SlumpProblem prob, MPI_Comm comm, PetscBo
 typedef struct {
   PetscReal start, factor;
   PetscInt  nrho;
-  PetscBool set, monitor, adaptive;
+  PetscBool set, monitor, retry;
 } SteadyOptions;
 
 static PetscErrorCode SteadyReadOptions(SlumpProblem prob, MPI_Comm comm, SteadyOptions *o)
@@ -266,14 +266,14 @@ static PetscErrorCode SteadyReadOptions(SlumpProblem prob, MPI_Comm comm, Steady
   o->factor  = 10.0;
   o->nrho    = 1;
   o->monitor = PETSC_FALSE;
-  o->adaptive = PETSC_TRUE;
+  o->retry   = PETSC_TRUE;
   PetscCall(SlumpProblemGetRheology(prob, &rheo));
   PetscCall(SlumpRheologyGetRegularisation(rheo, &regname, &target, &larger_stiffer));
   PetscOptionsBegin(comm, NULL, "Steady solve", "SlumpSteadySolve");
   PetscCall(PetscOptionsReal("-steady_continuation_start", "First value of the regularisation parameter (continuation towards the model's value)", "", o->start, &o->start, &o->set));
   PetscCall(PetscOptionsBool("-newton_monitor", "Print max|F| at every Newton iterate", "", o->monitor, &o->monitor, NULL));
   PetscCall(PetscOptionsReal("-steady_continuation_factor", "Factor between continuation steps (> 1)", "", o->factor, &o->factor, NULL));
-  PetscCall(PetscOptionsBool("-steady_continuation_retry", "Retry a failed Newton solve from softer regularisation values (continuation with smaller factors)", "", o->adaptive, &o->adaptive, NULL));
+  PetscCall(PetscOptionsBool("-steady_continuation_retry", "Retry a failed Newton solve from softer regularisation values (continuation with smaller factors)", "", o->retry, &o->retry, NULL));
   PetscCall(PetscOptionsInt("-steady_inertia_steps", "Continuation in the Reynolds number: solve at the densities rho k/n, k = 1 ... n, at the first regularisation value (1: none)", "", o->nrho, &o->nrho, NULL));
   PetscOptionsEnd();
   PetscCheck(o->factor > 1.0, comm, PETSC_ERR_USER_INPUT, "-steady_continuation_factor must be > 1; got %g", (double)o->factor);
@@ -323,9 +323,9 @@ static PetscReal RetryValue(PetscReal first, PetscReal reached, PetscReal v, Pet
    converged, from 100 and then 1e4 times softer than the first value tried;
    after, from the stiffest value solved (X holds its solution) with the
    square root of the step that failed, which grows back (squared, up to
-   -steady_continuation_factor) after each success; at most 10 retries. The Bingham cavity on
-   256 x 256 cells fails at m = 1e4 from rest (50 Newton steps, max|F| 1.34)
-   and converges from m = 1e2 (docs/performance.md). */
+   -steady_continuation_factor) after each success; at most 10 retries. The
+   Bingham cavity on 256 x 256 cells fails at m = 1e4 from rest (50 Newton
+   steps, max|F| 1.34) and converges from m = 1e2 (docs/performance.md). */
 static PetscErrorCode SteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats, PetscBool retry)
 {
   SlumpImplicitSolver s;
@@ -348,7 +348,7 @@ static PetscErrorCode SteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats, P
     PetscCall(SlumpLinearisationSetUp(prob, comm, &sv));
   }
   PetscCall(SlumpImplicitSolverCreate(prob, X, &s));
-  retry = (PetscBool)(retry && o.adaptive && regname);
+  retry = (PetscBool)(retry && o.retry && regname);
   cont  = o.set;
   v = first = o.set ? o.start : target;
   f  = o.factor;
