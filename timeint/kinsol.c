@@ -305,13 +305,13 @@ static PetscReal Stiffer(PetscReal v, PetscReal f, PetscBool larger_stiffer)
 }
 
 /* The value to retry from after a failed solve at v (0: none left).
-   Nothing solved yet (reached 0): 100, then 1e4 times softer than the first
-   value tried (*nsoft counts them). Else, from the stiffest value solved, the
+   Nothing solved yet (reached 0; every retry so far was one of these): 100,
+   then 1e4 times softer than the first value tried. Else, from the stiffest value solved, the
    square root of the step that failed (*f; the last step to the target may
    have been shorter than the factor); at most 10 retries. */
-static PetscReal RetryValue(PetscReal first, PetscReal reached, PetscReal v, PetscBool larger_stiffer, PetscInt nretry, PetscInt *nsoft, PetscReal *f)
+static PetscReal RetryValue(PetscReal first, PetscReal reached, PetscReal v, PetscBool larger_stiffer, PetscInt nretry, PetscReal *f)
 {
-  if (reached == 0.0) return *nsoft < 2 ? Stiffer(first, PetscPowReal(100.0, -(PetscReal)++*nsoft), larger_stiffer) : 0.0;
+  if (reached == 0.0) return nretry < 2 ? Stiffer(first, PetscPowReal(100.0, -(PetscReal)(nretry + 1)), larger_stiffer) : 0.0;
   if (nretry >= 10) return 0.0;
   *f = PetscSqrtReal(larger_stiffer ? v / reached : reached / v);
   return *f >= 1.05 ? Stiffer(reached, *f, larger_stiffer) : 0.0;
@@ -333,7 +333,7 @@ static PetscErrorCode SteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats, P
   SteadyOptions       o;
   const char         *regname;
   PetscReal           target, v, rho, f, first, reached = 0.0;
-  PetscInt            kr, effects, nsoft = 0, nretry = 0;
+  PetscInt            kr, effects, nretry = 0;
   PetscBool           larger_stiffer, cont;
   MPI_Comm            comm;
   PetscFunctionBeginUser;
@@ -389,7 +389,7 @@ static PetscErrorCode SteadySolve(SlumpProblem prob, Vec X, SlumpStats *stats, P
     /* a retry from softer values, after the density ramp; X holds the last
        converged state (the initial guess if none) */
     if (!conv && retry && !lf.n && (o.nrho == 1 || kr > o.nrho)) {
-      const PetscReal vn = RetryValue(first, reached, v, larger_stiffer, nretry, &nsoft, &f);
+      const PetscReal vn = RetryValue(first, reached, v, larger_stiffer, nretry, &f);
       if (vn > 0.0) {
         PetscCall(PetscPrintf(comm, "steady: no convergence at %s = %.6g; retrying from %s = %.6g\n", regname, (double)v, regname, (double)vn));
         ++nretry;
